@@ -1,0 +1,251 @@
+// remesh_benchmark -- runs every contender on the same meshes at the same target vertex count,
+// in the same run, and writes a Markdown and a JSON table of quality, time and peak memory.
+//
+// Each (contender, mesh) pair runs in a child process (fork), so that its peak memory (VmHWM)
+// is its own and a crash of one contender does not end the run (VmHWM is reset just before the
+// remesh, so the input mesh, already read, is counted, the quality report afterwards is not).
+// Time is wall-clock time of the remesh call alone (reading and reporting excluded), single-threaded.
+//
+// usage: remesh_benchmark [--meshes fandisk,triceratops,...] [--factor F] [--contenders a,b]
+//                         [--markdown FILE] [--json FILE]
+#include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
+#include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/read_surface_mesh.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/version.h>
+
+#include <sys/utsname.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3> Mesh;
+namespace PR = Poisson_remesh;
+
+struct Row
+{
+  std::string contender, mesh;
+  bool ok = false;
+  std::string error;
+  double input_vertices = 0, target = 0, vertices = 0, faces = 0;
+  double min_angle = 0, mean_min_angle = 0, below_30 = 0, irregular = 0, hausdorff = 0;
+  double self_intersections = 0, genus_kept = 0, seconds = 0, peak_mib = 0;
+};
+
+// A contender remeshes `input` into `output` at `target` vertices and returns the seconds spent.
+typedef std::function<double(const Mesh& input, double target, Mesh& output)> Contender;
+
+static std::map<std::string, Contender> contenders()
+{
+  return {
+    {"cgal_isotropic", [](const Mesh& input, double target, Mesh& output) {
+       PR::Peers::Isotropic_remeshing_settings s;
+       s.target_vertex_count = target;
+       s.sharp_angle = 60;
+       s.iterations = 5;
+       return PR::Peers::isotropic_remeshing_at_vertex_count(input, output, s).seconds;
+     }},
+  };
+}
+
+static double peak_memory_mib()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while(std::getline(status, line))
+    if(line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0;
+}
+
+static std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while(std::getline(ss, item, ',')) if(!item.empty()) out.push_back(item);
+  return out;
+}
+
+// Runs in the child: everything for one row, written as "key value" lines to fd.
+static void run_row(const std::string& contender, const Contender& run, const std::string& mesh_file, double factor, int fd)
+{
+  std::ostringstream os;
+  os.precision(17);
+  try {
+    Mesh input, output;
+    PR::read_surface_mesh(mesh_file, input);
+    const double target = std::round(factor * double(num_vertices(input)));
+    std::ofstream("/proc/self/clear_refs") << "5"; // reset VmHWM: the peak is the remesh's own
+    const double seconds = run(input, target, output);
+    const double peak = peak_memory_mib();
+    const PR::Quality_report in = PR::quality_report(input, PR::parameters::check_self_intersections(false));
+    const PR::Quality_report r = PR::quality_report(output, input);
+    os << "ok 1\ninput_vertices " << num_vertices(input) << "\ntarget " << target << "\nvertices " << r.number_of_vertices
+       << "\nfaces " << r.number_of_faces << "\nmin_angle " << r.min_angle << "\nmean_min_angle " << r.mean_min_angle
+       << "\nbelow_30 " << r.share_min_angle_below_30 << "\nirregular " << r.irregular_share
+       << "\nhausdorff " << (r.hausdorff ? *r.hausdorff : -1) << "\nself_intersections " << r.number_of_self_intersecting_face_pairs
+       << "\ngenus_kept " << (r.genus == in.genus && r.number_of_components == in.number_of_components ? 1 : 0)
+       << "\nseconds " << seconds << "\npeak_mib " << peak << "\n";
+  } catch(const std::exception& e) {
+    os << "ok 0\nerror " << e.what() << "\n";
+  }
+  const std::string s = os.str();
+  ssize_t written = write(fd, s.data(), s.size());
+  (void)written;
+}
+
+static Row run_in_child(const std::string& contender, const Contender& run, const std::string& mesh_name,
+                        const std::string& mesh_file, double factor)
+{
+  Row row;
+  row.contender = contender;
+  row.mesh = mesh_name;
+  int fds[2];
+  if(pipe(fds) != 0) { row.error = "pipe failed"; return row; }
+  std::cout.flush();
+  const pid_t pid = fork();
+  if(pid == 0) {
+    close(fds[0]);
+    run_row(contender, run, mesh_file, factor, fds[1]);
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string text;
+  char buf[4096];
+  ssize_t n;
+  while((n = read(fds[0], buf, sizeof(buf))) > 0) text.append(buf, std::size_t(n));
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  std::istringstream is(text);
+  std::string key;
+  std::map<std::string, double> v;
+  while(is >> key) {
+    if(key == "error") { std::getline(is, row.error); continue; }
+    is >> v[key];
+  }
+  if(v["ok"] != 1) {
+    if(row.error.empty()) row.error = WIFSIGNALED(status) ? std::string("killed by signal ") + strsignal(WTERMSIG(status)) : "failed";
+    return row;
+  }
+  row.ok = true;
+  row.input_vertices = v["input_vertices"]; row.target = v["target"]; row.vertices = v["vertices"]; row.faces = v["faces"];
+  row.min_angle = v["min_angle"]; row.mean_min_angle = v["mean_min_angle"]; row.below_30 = v["below_30"];
+  row.irregular = v["irregular"]; row.hausdorff = v["hausdorff"]; row.self_intersections = v["self_intersections"];
+  row.genus_kept = v["genus_kept"]; row.seconds = v["seconds"]; row.peak_mib = v["peak_mib"];
+  return row;
+}
+
+static std::string machine_description()
+{
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  std::string line;
+  while(std::getline(info, line))
+    if(line.rfind("model name", 0) == 0) { cpu = line.substr(line.find(':') + 2); break; }
+  struct utsname u;
+  uname(&u);
+  std::ostringstream os;
+  os << cpu << ", " << sysconf(_SC_NPROCESSORS_ONLN) << " cores, " << u.sysname << " " << u.release << " " << u.machine
+     << ", CGAL " << CGAL_VERSION_STR << ", g++ " << __VERSION__;
+  return os.str();
+}
+
+static std::string fmt(double x, int digits)
+{
+  char b[64];
+  std::snprintf(b, sizeof(b), "%.*f", digits, x);
+  return b;
+}
+
+int main(int argc, char** argv)
+{
+  std::vector<std::string> meshes = {"fandisk", "triceratops", "dino", "elephant", "cow", "knot1", "femur", "bull"};
+  std::vector<std::string> names;
+  for(const auto& c : contenders()) names.push_back(c.first);
+  double factor = 1.0;
+  std::string markdown = "RESULTS.md", json = "results.json", data = POISSON_REMESH_DATA_DIR;
+  for(int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if(i + 1 >= argc) { std::cerr << "remesh_benchmark: " << a << " needs a value\n"; std::exit(2); }
+      return argv[++i];
+    };
+    if(a == "--meshes") meshes = split(value());
+    else if(a == "--contenders") names = split(value());
+    else if(a == "--factor") factor = std::stod(value());
+    else if(a == "--markdown") markdown = value();
+    else if(a == "--json") json = value();
+    else if(a == "--data") data = value();
+    else if(a == "--help") {
+      std::cout << "usage: remesh_benchmark [--meshes a,b] [--contenders c,d] [--factor F] [--markdown FILE] [--json FILE] [--data DIR]\n"
+                   "  runs each contender on CGAL data meshes at F times the input's vertex count\n";
+      return 0;
+    }
+    else { std::cerr << "remesh_benchmark: unknown option " << a << "\n"; return 2; }
+  }
+  const auto all = contenders();
+  std::vector<Row> rows;
+  for(const std::string& mesh : meshes) {
+    const std::string file = mesh.find('/') != std::string::npos ? mesh : data + "/meshes/" + mesh + ".off";
+    for(const std::string& c : names) {
+      if(!all.count(c)) { std::cerr << "remesh_benchmark: unknown contender " << c << "\n"; return 2; }
+      std::cerr << "running " << c << " on " << mesh << " ..." << std::flush;
+      rows.push_back(run_in_child(c, all.at(c), mesh, file, factor));
+      std::cerr << (rows.back().ok ? " " + fmt(rows.back().seconds, 3) + " s\n" : " FAILED: " + rows.back().error + "\n");
+    }
+  }
+
+  std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
+  std::ostringstream md;
+  md << "| contender | mesh | input V | target V | V | θmin (°) | θ̄min (°) | <30° (%) | irregular (%) | Hausdorff (% diag) | self-int. pairs | topology kept | seconds | peak MiB |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|\n";
+  for(const Row& r : rows) {
+    if(!r.ok) { md << "| " << r.contender << " | " << r.mesh << " | failed: " << r.error << " |||||||||||\n"; continue; }
+    md << "| " << r.contender << " | " << r.mesh << " | " << fmt(r.input_vertices, 0) << " | " << fmt(r.target, 0) << " | "
+       << fmt(r.vertices, 0) << " | " << fmt(r.min_angle, 2) << " | " << fmt(r.mean_min_angle, 2) << " | "
+       << fmt(100 * r.below_30, 2) << " | " << fmt(100 * r.irregular, 1) << " | " << fmt(100 * r.hausdorff, 3) << " | "
+       << fmt(r.self_intersections, 0) << " | " << (r.genus_kept ? "yes" : "no") << " | " << fmt(r.seconds, 3) << " | "
+       << fmt(r.peak_mib, 0) << " |\n";
+  }
+  std::cout << md.str();
+  std::ofstream(markdown) << "<!-- written by remesh_benchmark on " << date << " -->\n"
+                          << "Machine: " << machine_description() << "\n\n"
+                          << "Target: " << factor << " × the input's vertex count; time is one remesh call, single-threaded.\n\n"
+                          << md.str();
+  std::ofstream js(json);
+  js.precision(10);
+  js << "{\n  \"date\": \"" << date << "\",\n  \"machine\": \"" << machine_description() << "\",\n  \"factor\": " << factor << ",\n  \"rows\": [\n";
+  for(std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    js << "    {\"contender\": \"" << r.contender << "\", \"mesh\": \"" << r.mesh << "\", \"ok\": " << (r.ok ? "true" : "false");
+    if(r.ok)
+      js << ", \"input_vertices\": " << r.input_vertices << ", \"target_vertices\": " << r.target << ", \"vertices\": " << r.vertices
+         << ", \"faces\": " << r.faces << ", \"min_angle_deg\": " << r.min_angle << ", \"mean_min_angle_deg\": " << r.mean_min_angle
+         << ", \"share_min_angle_below_30\": " << r.below_30 << ", \"irregular_share\": " << r.irregular
+         << ", \"hausdorff_over_diagonal\": " << r.hausdorff << ", \"self_intersecting_pairs\": " << r.self_intersections
+         << ", \"topology_kept\": " << (r.genus_kept ? "true" : "false") << ", \"seconds\": " << r.seconds
+         << ", \"peak_mib\": " << r.peak_mib;
+    else js << ", \"error\": \"" << r.error << "\"";
+    js << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+  }
+  js << "  ]\n}\n";
+  return 0;
+}

@@ -1,0 +1,28 @@
+// Poisson_remesh's own named parameters, listed once: parameters.h turns each line into a tag
+// type, a member function of Poisson_remesh::Named_function_parameters and a free function of
+// Poisson_remesh::parameters. No include guard on purpose (included several times with a macro).
+//
+// POISSON_REMESH_add_named_parameter(tag type, tag value, function name)
+
+// target size of the output (sampler and remesher)
+POISSON_REMESH_add_named_parameter(target_vertex_count_t, target_vertex_count, target_vertex_count)
+POISSON_REMESH_add_named_parameter(target_edge_length_t, target_edge_length, target_edge_length)
+POISSON_REMESH_add_named_parameter(sampling_radius_t, sampling_radius, sampling_radius)
+
+// density and features
+POISSON_REMESH_add_named_parameter(density_t, density, density)
+POISSON_REMESH_add_named_parameter(feature_policy_t, feature_policy, feature_policy)
+POISSON_REMESH_add_named_parameter(sharp_angle_t, sharp_angle, sharp_angle)
+
+// the pluggable models of the package's concepts
+POISSON_REMESH_add_named_parameter(geodesic_oracle_t, geodesic_oracle, geodesic_oracle)
+POISSON_REMESH_add_named_parameter(sampler_t, sampler, sampler)
+POISSON_REMESH_add_named_parameter(relaxer_t, relaxer, relaxer)
+
+// input reading and validation
+POISSON_REMESH_add_named_parameter(repair_degenerate_faces_t, repair_degenerate_faces, repair_degenerate_faces)
+
+// quality report
+POISSON_REMESH_add_named_parameter(check_self_intersections_t, check_self_intersections, check_self_intersections)
+POISSON_REMESH_add_named_parameter(angle_histogram_bin_width_t, angle_histogram_bin_width, angle_histogram_bin_width)
+POISSON_REMESH_add_named_parameter(hausdorff_relative_error_bound_t, hausdorff_relative_error_bound, hausdorff_relative_error_bound)

@@ -1,0 +1,351 @@
+// Poisson_remesh/read_surface_mesh.h
+//
+// Entry point: read_surface_mesh(filename, mesh, np) -- reads OFF, OBJ, PLY, STL (and GOCAD .ts)
+// through CGAL's readers, triangulates polygons, makes the orientation consistent where that is
+// possible, and checks that the result is input the remesher can work on (paper §3: an orientable
+// two-manifold; borders and several components are allowed). Every problem is reported by a
+// Poisson_remesh::Input_error with a specific code and a message that names the problem, how many
+// elements it touches and the first of them. Nothing is written: a failed read leaves `mesh` empty.
+
+#ifndef POISSON_REMESH_READ_SURFACE_MESH_H
+#define POISSON_REMESH_READ_SURFACE_MESH_H
+
+#include <Poisson_remesh/parameters.h>
+
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/Kernel_traits.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Poisson_remesh {
+
+/// What went wrong with an input file.
+enum class Input_error_code {
+  cannot_open,            ///< missing, unreadable, or a directory
+  empty_file,             ///< zero bytes
+  unsupported_format,     ///< extension not among off, obj, ply, stl, ts
+  parse_error,            ///< the reader could not parse the file (truncated, garbage, wrong header)
+  empty_mesh,             ///< parsed, but no vertices or no faces
+  invalid_coordinates,    ///< NaN or infinite coordinates
+  invalid_face,           ///< fewer than 3 vertices, an index out of range, or a vertex repeated in a face
+  non_manifold_edges,     ///< an edge shared by more than two faces
+  non_manifold_vertices,  ///< a vertex whose faces form more than one fan
+  non_orientable,         ///< no consistent orientation exists (Moebius-like)
+  degenerate_faces,       ///< zero-area faces (three collinear points)
+  cannot_triangulate      ///< a polygon that CGAL could not triangulate
+};
+
+inline const char* to_string(Input_error_code c)
+{
+  switch(c) {
+    case Input_error_code::cannot_open: return "cannot_open";
+    case Input_error_code::empty_file: return "empty_file";
+    case Input_error_code::unsupported_format: return "unsupported_format";
+    case Input_error_code::parse_error: return "parse_error";
+    case Input_error_code::empty_mesh: return "empty_mesh";
+    case Input_error_code::invalid_coordinates: return "invalid_coordinates";
+    case Input_error_code::invalid_face: return "invalid_face";
+    case Input_error_code::non_manifold_edges: return "non_manifold_edges";
+    case Input_error_code::non_manifold_vertices: return "non_manifold_vertices";
+    case Input_error_code::non_orientable: return "non_orientable";
+    case Input_error_code::degenerate_faces: return "degenerate_faces";
+    case Input_error_code::cannot_triangulate: return "cannot_triangulate";
+  }
+  return "unknown";
+}
+
+/// The exception thrown by read_surface_mesh(): `what()` is a complete sentence for the user.
+class Input_error : public std::runtime_error
+{
+public:
+  Input_error(Input_error_code code, const std::string& message)
+    : std::runtime_error(message), code_(code) {}
+  Input_error_code code() const { return code_; }
+private:
+  Input_error_code code_;
+};
+
+/// What read_surface_mesh() did to the file's content on the way to a valid mesh.
+struct Read_report
+{
+  std::size_t input_points = 0;           ///< points in the file
+  std::size_t input_polygons = 0;         ///< faces in the file
+  std::size_t triangulated_polygons = 0;  ///< faces with more than 3 vertices that were triangulated
+  bool reoriented = false;                ///< faces were flipped to make the orientation consistent
+  std::size_t removed_degenerate_faces = 0; ///< with repair_degenerate_faces(true)
+  std::vector<std::string> warnings;      ///< one sentence each
+};
+
+namespace internal {
+
+inline std::string lower_extension(const std::string& fname)
+{
+  std::string ext = std::filesystem::path(fname).extension().string();
+  if(!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+// After a failed parse of a text file: is there a NaN/inf token, and on which line?
+inline bool find_non_finite_token(const std::string& fname, std::size_t& line_number)
+{
+  std::ifstream in(fname);
+  std::string line;
+  line_number = 0;
+  while(std::getline(in, line)) {
+    ++line_number;
+    std::istringstream ls(line);
+    std::string tok;
+    while(ls >> tok) {
+      std::string t;
+      for(char c : tok) if(c != '+' && c != '-') t += char(std::tolower((unsigned char)c));
+      if(t == "nan" || t == "inf" || t == "infinity" || t.rfind("nan(", 0) == 0 || t == "1.#inf" || t == "1.#qnan")
+        return true;
+    }
+  }
+  return false;
+}
+
+typedef std::pair<std::size_t, std::size_t> Soup_edge;
+
+inline Soup_edge make_soup_edge(std::size_t a, std::size_t b) { return a < b ? Soup_edge(a, b) : Soup_edge(b, a); }
+
+// Vertices whose incident polygons form more than one fan (connected through edges incident
+// to the vertex). Returns the count and the first such vertex.
+template <class PolygonRange>
+std::size_t count_non_manifold_soup_vertices(const PolygonRange& polygons, std::size_t nb_points,
+                                             std::size_t& first)
+{
+  std::vector<std::vector<std::size_t>> incident(nb_points);
+  for(std::size_t f = 0; f < polygons.size(); ++f)
+    for(std::size_t v : polygons[f]) incident[v].push_back(f);
+
+  std::size_t count = 0;
+  first = std::size_t(-1);
+  std::vector<std::size_t> parent;
+  for(std::size_t v = 0; v < nb_points; ++v) {
+    const std::vector<std::size_t>& inc = incident[v];
+    if(inc.size() < 2) continue;
+    parent.resize(inc.size());
+    for(std::size_t i = 0; i < inc.size(); ++i) parent[i] = i;
+    auto find = [&](std::size_t i) { while(parent[i] != i) i = parent[i] = parent[parent[i]]; return i; };
+    // link the polygons around v that share an edge (v, w)
+    std::map<std::size_t, std::size_t> first_with_neighbor; // w -> local index of a polygon with edge (v,w)
+    for(std::size_t i = 0; i < inc.size(); ++i) {
+      const auto& poly = polygons[inc[i]];
+      const std::size_t n = poly.size();
+      for(std::size_t k = 0; k < n; ++k) {
+        if(poly[k] != v) continue;
+        for(std::size_t w : { poly[(k + 1) % n], poly[(k + n - 1) % n] }) {
+          auto ins = first_with_neighbor.emplace(w, i);
+          if(!ins.second) parent[find(i)] = find(ins.first->second);
+        }
+      }
+    }
+    std::size_t fans = 0;
+    for(std::size_t i = 0; i < inc.size(); ++i) if(find(i) == i) ++fans;
+    if(fans > 1) { if(count == 0) first = v; ++count; }
+  }
+  return count;
+}
+
+} // namespace internal
+
+/*!
+  reads `fname` into `tm`, a model of `MutableFaceGraph`, and checks it (see the file comment).
+  Throws Input_error on failure, with `tm` left empty.
+
+  Named parameters:
+  - `vertex_point_map`: the mesh's point map (default: `boost::get(CGAL::vertex_point, tm)`).
+  - `repair_degenerate_faces` (bool, default false): remove zero-area faces with
+    `CGAL::Polygon_mesh_processing::remove_degenerate_faces()` instead of refusing them.
+*/
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
+                              const NamedParameters& np = parameters::default_values())
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef typename CGAL::GetVertexPointMap<TriangleMesh, NamedParameters>::type VPM;
+  typedef typename boost::property_traits<VPM>::value_type Point;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+
+  const bool repair = choose_parameter(get_parameter(np, internal_np::repair_degenerate_faces), false);
+  Read_report report;
+  const std::string quoted = "'" + fname + "'";
+
+  // 1. the file itself
+  std::error_code ec;
+  if(!std::filesystem::exists(fname, ec))
+    throw Input_error(Input_error_code::cannot_open, "cannot open " + quoted + ": no such file");
+  if(std::filesystem::is_directory(fname, ec))
+    throw Input_error(Input_error_code::cannot_open, "cannot open " + quoted + ": it is a directory");
+  {
+    std::ifstream probe(fname, std::ios::binary);
+    if(!probe)
+      throw Input_error(Input_error_code::cannot_open,
+                        "cannot open " + quoted + ": " + std::strerror(errno));
+  }
+  if(std::filesystem::file_size(fname, ec) == 0)
+    throw Input_error(Input_error_code::empty_file, quoted + " is empty (0 bytes)");
+  const std::string ext = internal::lower_extension(fname);
+  if(ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "ts")
+    throw Input_error(Input_error_code::unsupported_format,
+                      "cannot read " + quoted + ": unsupported extension '" + ext +
+                      "' (supported: .off .obj .ply .stl .ts)");
+
+  // 2. the polygon soup
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  bool parsed = false;
+  try {
+    parsed = CGAL::IO::read_polygon_soup(fname, points, polygons, CGAL::parameters::verbose(false));
+  } catch(const std::exception&) {
+    parsed = false;
+  }
+  if(!parsed) {
+    std::size_t line = 0;
+    if(internal::find_non_finite_token(fname, line))
+      throw Input_error(Input_error_code::invalid_coordinates,
+                        "cannot read " + quoted + ": NaN or infinite coordinate at line " + std::to_string(line));
+    throw Input_error(Input_error_code::parse_error,
+                      "cannot read " + quoted + ": not a valid " + ext +
+                      " file (truncated, malformed header or counts, or not a mesh)");
+  }
+  report.input_points = points.size();
+  report.input_polygons = polygons.size();
+  if(points.empty() || polygons.empty())
+    throw Input_error(Input_error_code::empty_mesh,
+                      quoted + " has " + std::to_string(points.size()) + " vertices and " +
+                      std::to_string(polygons.size()) + " faces: nothing to remesh");
+
+  // 3. coordinates and faces
+  {
+    std::size_t bad = 0, first = 0;
+    for(std::size_t i = 0; i < points.size(); ++i) {
+      const Point& p = points[i];
+      if(!(std::isfinite(CGAL::to_double(p.x())) && std::isfinite(CGAL::to_double(p.y())) &&
+           std::isfinite(CGAL::to_double(p.z())))) {
+        if(bad++ == 0) first = i;
+      }
+    }
+    if(bad)
+      throw Input_error(Input_error_code::invalid_coordinates,
+                        quoted + ": " + std::to_string(bad) + " vertices have NaN or infinite coordinates (first: vertex " +
+                        std::to_string(first) + ")");
+  }
+  for(std::size_t f = 0; f < polygons.size(); ++f) {
+    const auto& poly = polygons[f];
+    const std::string where = quoted + ": face " + std::to_string(f);
+    if(poly.size() < 3)
+      throw Input_error(Input_error_code::invalid_face, where + " has " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
+    for(std::size_t v : poly)
+      if(v >= points.size())
+        throw Input_error(Input_error_code::invalid_face, where + " refers to vertex " + std::to_string(v) +
+                          " but there are only " + std::to_string(points.size()));
+    std::vector<std::size_t> sorted(poly.begin(), poly.end());
+    std::sort(sorted.begin(), sorted.end());
+    auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+    if(dup != sorted.end())
+      throw Input_error(Input_error_code::invalid_face, where + " repeats vertex " + std::to_string(*dup));
+  }
+
+  // 4. manifoldness and orientation
+  {
+    std::map<internal::Soup_edge, std::size_t> edge_faces;
+    for(const auto& poly : polygons)
+      for(std::size_t k = 0; k < poly.size(); ++k)
+        ++edge_faces[internal::make_soup_edge(poly[k], poly[(k + 1) % poly.size()])];
+    std::size_t bad = 0;
+    internal::Soup_edge first;
+    for(const auto& e : edge_faces)
+      if(e.second > 2) { if(bad++ == 0) first = e.first; }
+    if(bad)
+      throw Input_error(Input_error_code::non_manifold_edges,
+                        quoted + ": " + std::to_string(bad) + " non-manifold edges (shared by more than two faces), first between vertices " +
+                        std::to_string(first.first) + " and " + std::to_string(first.second));
+  }
+  {
+    std::size_t first = 0;
+    const std::size_t bad = internal::count_non_manifold_soup_vertices(polygons, points.size(), first);
+    if(bad)
+      throw Input_error(Input_error_code::non_manifold_vertices,
+                        quoted + ": " + std::to_string(bad) + " non-manifold vertices (faces around them form several fans), first: vertex " +
+                        std::to_string(first));
+  }
+  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
+    const std::size_t before = points.size();
+    PMP::orient_polygon_soup(points, polygons);
+    if(points.size() != before)
+      throw Input_error(Input_error_code::non_orientable,
+                        quoted + ": the surface is not orientable (no consistent orientation of its faces exists)");
+    report.reoriented = true;
+    report.warnings.push_back("face orientation was inconsistent and has been made consistent");
+  }
+
+  // 5. the mesh, triangulated
+  clear(tm);
+  VPM vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_property_map(CGAL::vertex_point, tm));
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, tm, CGAL::parameters::default_values(),
+                                    CGAL::parameters::vertex_point_map(vpm));
+  for(const auto& poly : polygons) if(poly.size() > 3) ++report.triangulated_polygons;
+  if(report.triangulated_polygons) {
+    if(!PMP::triangulate_faces(tm, CGAL::parameters::vertex_point_map(vpm))) {
+      clear(tm);
+      throw Input_error(Input_error_code::cannot_triangulate, quoted + ": some polygons could not be triangulated");
+    }
+    report.warnings.push_back(std::to_string(report.triangulated_polygons) + " polygons with more than 3 vertices were triangulated");
+  }
+
+  // 6. degenerate faces
+  std::size_t degenerate = 0, first_degenerate = 0, index = 0;
+  for(face_descriptor f : faces(tm)) {
+    if(PMP::is_degenerate_triangle_face(f, tm, CGAL::parameters::vertex_point_map(vpm))) {
+      if(degenerate++ == 0) first_degenerate = index;
+    }
+    ++index;
+  }
+  if(degenerate) {
+    if(!repair) {
+      clear(tm);
+      throw Input_error(Input_error_code::degenerate_faces,
+                        quoted + ": " + std::to_string(degenerate) + " degenerate (zero-area) faces, first: face " +
+                        std::to_string(first_degenerate) + (report.triangulated_polygons ? " after triangulation" : "") +
+                        "; repair them with the repair option");
+    }
+    PMP::remove_degenerate_faces(tm, CGAL::parameters::vertex_point_map(vpm));
+    std::size_t left = 0;
+    for(face_descriptor f : faces(tm))
+      if(PMP::is_degenerate_triangle_face(f, tm, CGAL::parameters::vertex_point_map(vpm))) ++left;
+    if(left || is_empty(tm) || !is_valid_polygon_mesh(tm)) {
+      clear(tm);
+      throw Input_error(Input_error_code::degenerate_faces,
+                        quoted + ": " + std::to_string(degenerate) + " degenerate faces could not all be removed");
+    }
+    report.removed_degenerate_faces = degenerate;
+    report.warnings.push_back(std::to_string(degenerate) + " degenerate faces were removed");
+  }
+  return report;
+}
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_READ_SURFACE_MESH_H

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Configures and builds Poisson_remesh (Release) in ./build, after installing what is missing.
+# Usage: scripts/build.sh [extra cmake -D options...]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/scripts/install_dependencies.sh"
+build="${POISSON_REMESH_BUILD_DIR:-$root/build}"
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
+jobs="${POISSON_REMESH_JOBS:-$(nproc)}"
+cmake --build "$build" -j "$jobs"

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Drives the command-line programs as a user would and checks exit codes, messages and that an
+# output file is never left partial or clobbered. Usage: command_line_tests.sh MESH_QUALITY POISSON_REMESH DATA_DIR
+set -u
+mesh_quality="$1"; poisson_remesh="$2"; data="$3"
+dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
+passed=0; failed=0
+check() { # check NAME CONDITION...
+  local name="$1"; shift
+  if "$@"; then passed=$((passed+1)); else failed=$((failed+1)); echo "FAILED: $name"; fi
+}
+run() { # run EXPECTED_CODE CMD... ; leaves stdout in $dir/out, stderr in $dir/err
+  local expected="$1"; shift
+  "$@" >"$dir/out" 2>"$dir/err"; local code=$?
+  [ "$code" -eq "$expected" ] || { echo "exit $code, expected $expected: $*"; cat "$dir/err"; return 1; }
+}
+has() { grep -q -- "$2" "$dir/$1" || { echo "'$2' not in $1:"; cat "$dir/$1"; return 1; }; }
+
+# mesh_quality
+check "mesh_quality --help" run 0 "$mesh_quality" --help
+check "help text" has out "usage: mesh_quality"
+check "mesh_quality on triceratops" run 0 "$mesh_quality" "$data/meshes/triceratops.off"
+check "table has the vertex count" has out "vertices *2832"
+check "table has the mean min angle" has out "mean min angle (deg) *29.83"
+check "mesh_quality --json with reference" run 0 "$mesh_quality" --json --svg "$dir/h.svg" "$data/meshes/fandisk.off" "$data/meshes/fandisk.off"
+check "json has hausdorff 0" has out '"hausdorff_over_diagonal": 0'
+check "svg written" test -s "$dir/h.svg"
+check "missing file" run 1 "$mesh_quality" "$dir/none.off"
+check "missing file message" has err "no such file"
+printf 'OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n' > "$dir/nan.off"
+check "nan input" run 1 "$mesh_quality" "$dir/nan.off"
+check "nan message" has err "NaN or infinite coordinate at line 4"
+check "unknown option" run 2 "$mesh_quality" --bogus "$data/meshes/fandisk.off"
+check "no argument" run 2 "$mesh_quality"
+
+# poisson_remesh
+check "poisson_remesh --help" run 0 "$poisson_remesh" --help
+check "help lists --vertices" has out "--vertices N"
+echo precious > "$dir/keep.off"
+check "default method is not available yet" run 4 "$poisson_remesh" "$data/meshes/fandisk.off" "$dir/keep.off"
+check "says it is not implemented" has err "not implemented yet"
+check "output untouched (method)" grep -q precious "$dir/keep.off"
+check "later-stage option rejected" run 4 "$poisson_remesh" --adaptive "$data/meshes/fandisk.off" "$dir/keep.off"
+check "names the stage" has err "adaptive density"
+check "bad number" run 2 "$poisson_remesh" --vertices abc --method isotropic "$data/meshes/fandisk.off" "$dir/keep.off"
+check "bad input keeps output" run 1 "$poisson_remesh" --method isotropic "$dir/nan.off" "$dir/keep.off"
+check "output untouched (input)" grep -q precious "$dir/keep.off"
+check "unwritable output" run 3 "$poisson_remesh" --method isotropic --vertices 300 --no-self-intersections "$data/meshes/triceratops.off" "$dir/no/such/out.off"
+check "peer remesh" run 0 "$poisson_remesh" --method isotropic --vertices 1500 --report "$dir/r.json" --svg "$dir/r.svg" "$data/meshes/triceratops.off" "$dir/keep.off"
+check "before/after table" has out "output (CGAL isotropic)"
+check "output replaced" sh -c "head -1 '$dir/keep.off' | grep -q OFF"
+check "report written" grep -q '"input"' "$dir/r.json"
+check "svg written" grep -q "</svg>" "$dir/r.svg"
+check "no temporary files left" sh -c "! ls -a '$dir' | grep -q partial"
+
+echo "command_line_programs: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

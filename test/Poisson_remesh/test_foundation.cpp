@@ -1,0 +1,481 @@
+// Tests of the package's foundation: input reading and validation, the quality report (against an
+// independent computation), named parameters, atomic output, sizing relations.
+#include "analytic_meshes.h"
+#include "test_support.h"
+
+#include <Poisson_remesh/IO/write_quality_report.h>
+#include <Poisson_remesh/parameters.h>
+#include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/read_surface_mesh.h>
+#include <Poisson_remesh/sizing.h>
+#include <Poisson_remesh/write_surface_mesh.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef CGAL::Polyhedron_3<K> Polyhedron;
+namespace PR = Poisson_remesh;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using test_support::data_mesh;
+
+// ------------------------------------------------------------------ an independent judge
+// Reads an OFF file with its own parser and computes the figures with long double and the law
+// of cosines -- no code shared with quality_report().
+namespace independent {
+
+struct Figures
+{
+  std::size_t V = 0, F = 0, E = 0, border_edges = 0;
+  long double min_angle = 180, mean_min_angle = 0, max_angle = 0, share_below_30 = 0, irregular = 0;
+};
+
+inline Figures off_figures(const std::string& file)
+{
+  std::ifstream in(file);
+  std::stringstream clean;
+  std::string line;
+  while(std::getline(in, line)) clean << line.substr(0, line.find('#')) << "\n";
+  std::string header;
+  clean >> header;
+  REQUIRE((header == "OFF" || header == "COFF"));
+  std::size_t nv, nf, ne;
+  clean >> nv >> nf >> ne;
+  std::getline(clean, line);
+  std::vector<std::array<long double, 3>> p(nv);
+  for(auto& q : p) {
+    do { std::getline(clean, line); } while(line.find_first_not_of(" \t\r") == std::string::npos);
+    std::istringstream ls(line); // x y z, then colours in COFF
+    ls >> q[0] >> q[1] >> q[2];
+  }
+  Figures fig;
+  fig.V = nv;
+  fig.F = nf;
+  std::map<std::pair<std::size_t, std::size_t>, int> edge_faces;
+  std::size_t below = 0;
+  for(std::size_t f = 0; f < nf; ++f) {
+    std::size_t n, a, b, c;
+    clean >> n >> a >> b >> c;
+    REQUIRE(n == 3);
+    std::getline(clean, line); // colours, if any
+    auto len = [&](std::size_t i, std::size_t j) {
+      long double s = 0;
+      for(int k = 0; k < 3; ++k) s += (p[i][k] - p[j][k]) * (p[i][k] - p[j][k]);
+      return std::sqrt(s);
+    };
+    const long double la = len(b, c), lb = len(c, a), lc = len(a, b);
+    auto angle = [](long double opposite, long double s1, long double s2) {
+      long double c = (s1 * s1 + s2 * s2 - opposite * opposite) / (2 * s1 * s2);
+      c = std::max<long double>(-1, std::min<long double>(1, c));
+      return std::acos(c) * 180.0L / 3.14159265358979323846264338327950288L;
+    };
+    const long double A[3] = {angle(la, lb, lc), angle(lb, lc, la), angle(lc, la, lb)};
+    const long double amin = std::min({A[0], A[1], A[2]}), amax = std::max({A[0], A[1], A[2]});
+    fig.min_angle = std::min(fig.min_angle, amin);
+    fig.max_angle = std::max(fig.max_angle, amax);
+    fig.mean_min_angle += amin;
+    if(amin < 30) ++below;
+    for(auto e : {std::make_pair(a, b), std::make_pair(b, c), std::make_pair(c, a)})
+      ++edge_faces[std::minmax(e.first, e.second)];
+  }
+  fig.mean_min_angle /= nf;
+  fig.share_below_30 = (long double)below / nf;
+  fig.E = edge_faces.size();
+  std::vector<std::size_t> degree(nv, 0);
+  std::vector<bool> border(nv, false);
+  for(const auto& e : edge_faces) {
+    ++degree[e.first.first];
+    ++degree[e.first.second];
+    if(e.second == 1) { ++fig.border_edges; border[e.first.first] = border[e.first.second] = true; }
+  }
+  std::size_t irregular = 0;
+  for(std::size_t v = 0; v < nv; ++v) if(degree[v] != (border[v] ? 4u : 6u)) ++irregular;
+  fig.irregular = (long double)irregular / nv;
+  return fig;
+}
+
+} // namespace independent
+
+TEST_CASE("quality report agrees with an independent computation on CGAL data meshes", "[quality]")
+{
+  for(const std::string name : {"meshes/fandisk.off", "meshes/triceratops.off", "meshes/dino.off", "meshes/elephant.off"}) {
+    INFO(name);
+    Mesh m;
+    PR::read_surface_mesh(data_mesh(name), m);
+    const PR::Quality_report r = PR::quality_report(m, PR::parameters::check_self_intersections(false));
+    const independent::Figures fig = independent::off_figures(data_mesh(name));
+    CHECK(r.number_of_vertices == fig.V);
+    CHECK(r.number_of_faces == fig.F);
+    CHECK(r.number_of_edges == fig.E);
+    CHECK(r.number_of_border_edges == fig.border_edges);
+    CHECK(std::abs(r.min_angle - double(fig.min_angle)) < 1e-3);
+    CHECK(std::abs(r.mean_min_angle - double(fig.mean_min_angle)) < 1e-3);
+    CHECK(std::abs(r.max_angle - double(fig.max_angle)) < 1e-3);
+    CHECK(std::abs(r.share_min_angle_below_30 - double(fig.share_below_30)) < 1e-12);
+    CHECK(std::abs(r.irregular_share - double(fig.irregular)) < 1e-12);
+    CHECK(r.euler_characteristic == long(fig.V) - long(fig.E) + long(fig.F));
+  }
+}
+
+TEST_CASE("quality report of the paper's triceratops shows its skinny triangles", "[quality]")
+{
+  Mesh m;
+  PR::read_surface_mesh(data_mesh("meshes/triceratops.off"), m);
+  const PR::Quality_report r = PR::quality_report(m);
+  CHECK(r.number_of_vertices == 2832);
+  CHECK(r.min_angle == Approx(0.0002).margin(0.00005));
+  CHECK(r.mean_min_angle == Approx(29.83).margin(0.005));
+  CHECK(r.number_of_components == 1);
+  CHECK(r.genus == 0);
+  CHECK(r.number_of_border_edges == 0);
+  CHECK(r.self_intersections_checked);
+}
+
+TEST_CASE("quality report gives the topology of analytic meshes", "[quality]")
+{
+  SECTION("sphere: closed, genus 0") {
+    const PR::Quality_report r = PR::quality_report(analytic::sphere(24, 12).to_mesh<Mesh>());
+    CHECK(r.euler_characteristic == 2);
+    CHECK(r.genus == 0);
+    CHECK(r.number_of_components == 1);
+    CHECK(r.number_of_border_edges == 0);
+    CHECK(r.number_of_self_intersecting_face_pairs == 0);
+  }
+  SECTION("torus: closed, genus 1") {
+    const PR::Quality_report r = PR::quality_report(analytic::torus(30, 12).to_mesh<Mesh>());
+    CHECK(r.euler_characteristic == 0);
+    CHECK(r.genus == 1);
+    CHECK(r.number_of_border_cycles == 0);
+  }
+  SECTION("cylinder: two borders, genus 0") {
+    const PR::Quality_report r = PR::quality_report(analytic::cylinder(16, 5).to_mesh<Mesh>());
+    CHECK(r.number_of_border_cycles == 2);
+    CHECK(r.number_of_border_edges == 32);
+    CHECK(r.genus == 0);
+  }
+  SECTION("plane grid: irregular vertices are exactly the four corners") {
+    const std::size_t n = 10;
+    const PR::Quality_report r = PR::quality_report(analytic::plane(n, n).to_mesh<Mesh>());
+    CHECK(r.number_of_border_cycles == 1);
+    CHECK(r.genus == 0);
+    CHECK(r.irregular_share == Approx(4.0 / double((n + 1) * (n + 1))));
+    CHECK(r.min_angle == Approx(45));
+    CHECK(r.max_angle == Approx(90));
+    // right isosceles triangles: Q = sqrt(3) / (1 + sqrt(2))
+    CHECK(r.mean_shape_quality == Approx(std::sqrt(3.0) / (1 + std::sqrt(2.0))));
+  }
+  SECTION("sphere and torus in one mesh: two components, total genus 1") {
+    analytic::Soup s = analytic::sphere(12, 6), t = analytic::torus(16, 8, 5, 1);
+    const std::size_t offset = s.points.size();
+    for(auto p : t.points) s.points.push_back({p[0] + 10, p[1], p[2]});
+    for(auto f : t.triangles) s.triangles.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+    const PR::Quality_report r = PR::quality_report(s.to_mesh<Mesh>());
+    CHECK(r.number_of_components == 2);
+    CHECK(r.genus == 1);
+    CHECK(r.euler_characteristic == 2);
+  }
+}
+
+TEST_CASE("quality report ignores the removed elements of a Surface_mesh", "[quality]")
+{
+  Mesh m = analytic::sphere(12, 6).to_mesh<Mesh>();
+  const std::size_t V = num_vertices(m);
+  m.remove_vertex(m.add_vertex(Point(5, 5, 5)));
+  REQUIRE(m.has_garbage());
+  const PR::Quality_report r = PR::quality_report(m);
+  CHECK(r.number_of_vertices == V);
+  CHECK(r.euler_characteristic == 2);
+  CHECK(r.irregular_share == PR::quality_report(analytic::sphere(12, 6).to_mesh<Mesh>()).irregular_share);
+}
+
+TEST_CASE("quality report: equilateral triangle has quality 1 and 60 degree angles", "[quality]")
+{
+  analytic::Soup s;
+  s.points = {{0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}};
+  s.triangles = {{0, 1, 2}};
+  const PR::Quality_report r = PR::quality_report(s.to_mesh<Mesh>());
+  CHECK(r.min_angle == Approx(60));
+  CHECK(r.max_angle == Approx(60));
+  CHECK(r.min_shape_quality == Approx(1));
+  CHECK(r.irregular_share == 1.0); // three border vertices of valence 2
+}
+
+TEST_CASE("quality report finds self-intersections and measures the Hausdorff distance", "[quality]")
+{
+  SECTION("two interpenetrating spheres intersect") {
+    analytic::Soup s = analytic::sphere(16, 8), t = analytic::sphere(16, 8);
+    const std::size_t offset = s.points.size();
+    for(auto p : t.points) s.points.push_back({p[0] + 0.5, p[1], p[2]});
+    for(auto f : t.triangles) s.triangles.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+    const PR::Quality_report r = PR::quality_report(s.to_mesh<Mesh>());
+    CHECK(r.number_of_self_intersecting_face_pairs > 0);
+  }
+  SECTION("a translated copy is at the translation distance") {
+    const Mesh a = analytic::plane(8, 8).to_mesh<Mesh>();
+    Mesh b = a;
+    for(auto v : vertices(b)) b.point(v) = b.point(v) + K::Vector_3(0, 0, 0.01);
+    const PR::Quality_report r = PR::quality_report(b, a);
+    REQUIRE(r.hausdorff);
+    CHECK(*r.hausdorff_absolute == Approx(0.01).epsilon(1e-3));
+    CHECK(*r.hausdorff == Approx(0.01 / std::sqrt(2.0)).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("quality report is the same on Polyhedron_3 and Surface_mesh", "[quality][polyhedron]")
+{
+  Mesh sm;
+  Polyhedron poly;
+  PR::read_surface_mesh(data_mesh("meshes/fandisk.off"), sm);
+  PR::read_surface_mesh(data_mesh("meshes/fandisk.off"), poly);
+  const PR::Quality_report a = PR::quality_report(sm), b = PR::quality_report(poly);
+  CHECK(a.number_of_vertices == b.number_of_vertices);
+  CHECK(a.number_of_faces == b.number_of_faces);
+  CHECK(a.genus == b.genus);
+  CHECK(a.min_angle == b.min_angle);
+  CHECK(a.mean_min_angle == Approx(b.mean_min_angle).epsilon(1e-12));
+  CHECK(a.irregular_share == b.irregular_share);
+  CHECK(a.number_of_self_intersecting_face_pairs == b.number_of_self_intersecting_face_pairs);
+}
+
+TEST_CASE("quality report JSON and SVG carry the figures", "[quality][io]")
+{
+  const PR::Quality_report r = PR::quality_report(analytic::plane(4, 4).to_mesh<Mesh>());
+  std::ostringstream json, svg;
+  PR::write_quality_json(json, {{"plane", r}});
+  PR::write_angle_histogram_svg(svg, {{"plane", r}, {"again", r}});
+  CHECK(json.str().find("\"plane\": {") != std::string::npos);
+  CHECK(json.str().find("\"min_angle_deg\": 45") != std::string::npos);
+  CHECK(json.str().find("\"vertices\": 25") != std::string::npos);
+  CHECK(svg.str().rfind("<svg", 0) == 0);
+  CHECK(svg.str().find("</svg>") != std::string::npos);
+  CHECK(svg.str().find("stroke=\"red\"") != std::string::npos);
+}
+
+// ------------------------------------------------------------------ named parameters
+TEST_CASE("named parameters: the package's and CGAL's chain in one expression and take effect", "[parameters]")
+{
+  Mesh m = analytic::plane(4, 4).to_mesh<Mesh>();
+  auto doubled = m.add_property_map<Mesh::Vertex_index, Point>("v:doubled").first;
+  for(auto v : vertices(m)) put(doubled, v, Point(2 * m.point(v).x(), 2 * m.point(v).y(), 2 * m.point(v).z()));
+
+  // ours, then CGAL's, then ours again
+  const PR::Quality_report r = PR::quality_report(
+    m, PR::parameters::angle_histogram_bin_width(10.0).vertex_point_map(doubled).check_self_intersections(false));
+  CHECK(r.angle_histogram.size() == 18);
+  CHECK(r.bbox_diagonal == Approx(2 * std::sqrt(2.0)));
+  CHECK_FALSE(r.self_intersections_checked);
+
+  // a CGAL function reads CGAL's parameters from our chain
+  const CGAL::Bbox_3 box = PMP::bbox(m, PR::parameters::angle_histogram_bin_width(5.0).vertex_point_map(doubled));
+  CHECK(box.xmax() == Approx(2));
+  CHECK(box.ymax() == Approx(2));
+  // and a plain CGAL chain is accepted by ours
+  const PR::Quality_report r2 = PR::quality_report(m, CGAL::parameters::vertex_point_map(doubled));
+  CHECK(r2.bbox_diagonal == Approx(2 * std::sqrt(2.0)));
+  CHECK(r2.angle_histogram.size() == 180);
+}
+
+// ------------------------------------------------------------------ reading and validation
+namespace {
+
+PR::Input_error_code read_error(const std::string& file, std::string* message = nullptr)
+{
+  Mesh m;
+  try {
+    PR::read_surface_mesh(file, m);
+  } catch(const PR::Input_error& e) {
+    if(message) *message = e.what();
+    CHECK(is_empty(m));
+    return e.code();
+  }
+  FAIL("no error reading " << file);
+  return PR::Input_error_code::cannot_open;
+}
+
+const char* tetrahedron_off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+
+} // namespace
+
+TEST_CASE("reading refuses bad input with a specific error", "[read]")
+{
+  const auto dir = test_support::scratch_dir("read");
+  using C = PR::Input_error_code;
+  using test_support::write_text;
+  std::string msg;
+
+  CHECK(read_error((dir / "missing.off").string(), &msg) == C::cannot_open);
+  CHECK_THAT(msg, Catch::Contains("no such file"));
+  CHECK(read_error(dir.string(), &msg) == C::cannot_open);
+  CHECK_THAT(msg, Catch::Contains("directory"));
+  CHECK(read_error(write_text(dir / "empty.off", ""), &msg) == C::empty_file);
+  CHECK(read_error(write_text(dir / "mesh.xyz", "0 0 0\n"), &msg) == C::unsupported_format);
+  CHECK_THAT(msg, Catch::Contains("xyz"));
+  CHECK(read_error(write_text(dir / "garbage.off", "this is not a mesh\n\x01\x02\x03"), &msg) == C::parse_error);
+  CHECK(read_error(write_text(dir / "truncated.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n"), &msg) == C::parse_error);
+  CHECK(read_error(write_text(dir / "binary.ply", std::string("ply\nformat binary_little_endian 1.0\nelement vertex 3\n") + std::string(7, '\xff')), &msg) == C::parse_error);
+  CHECK(read_error(write_text(dir / "nothing.off", "OFF\n0 0 0\n"), &msg) == C::empty_mesh);
+  CHECK(read_error(write_text(dir / "no_faces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"), &msg) == C::empty_mesh);
+
+  CHECK(read_error(write_text(dir / "nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"), &msg) == C::invalid_coordinates);
+  CHECK_THAT(msg, Catch::Contains("line 4"));
+  CHECK(read_error(write_text(dir / "inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"), &msg) == C::invalid_coordinates);
+
+  CHECK(read_error(write_text(dir / "repeated.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n"), &msg) == C::invalid_face);
+  CHECK_THAT(msg, Catch::Contains("repeats vertex 1"));
+
+  // three triangles on the edge (0, 1)
+  CHECK(read_error(write_text(dir / "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"), &msg) == C::non_manifold_edges);
+  CHECK_THAT(msg, Catch::Contains("1 non-manifold edges"));
+  // two tetrahedra sharing only vertex 0
+  CHECK(read_error(write_text(dir / "bowtie.off",
+                              "OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                              "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+                              "3 0 5 4\n3 0 4 6\n3 4 5 6\n3 0 6 5\n"), &msg) == C::non_manifold_vertices);
+  CHECK_THAT(msg, Catch::Contains("vertex 0"));
+  // a Moebius strip of 5 quads
+  {
+    std::ostringstream s;
+    const int n = 5;
+    s << "OFF\n" << 2 * n << " " << n << " 0\n";
+    for(int i = 0; i < n; ++i) {
+      const double t = 2 * M_PI * i / n, h = 0.3;
+      for(int side : {-1, 1}) {
+        const double w = side * h * std::cos(t / 2), z = side * h * std::sin(t / 2);
+        s << (2 + w) * std::cos(t) << " " << (2 + w) * std::sin(t) << " " << z << "\n";
+      }
+    }
+    for(int i = 0; i < n - 1; ++i) s << "4 " << 2 * i << " " << 2 * i + 2 << " " << 2 * i + 3 << " " << 2 * i + 1 << "\n";
+    s << "4 " << 2 * (n - 1) << " 1 0 " << 2 * (n - 1) + 1 << "\n"; // the half twist
+    CHECK(read_error(write_text(dir / "moebius.off", s.str()), &msg) == C::non_orientable);
+  }
+  // collinear triangle on an otherwise valid open mesh
+  CHECK(read_error(write_text(dir / "flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 0 2 1\n"), &msg) == C::degenerate_faces);
+  CHECK_THAT(msg, Catch::Contains("1 degenerate"));
+}
+
+TEST_CASE("reading accepts imperfect but valid input and says what it did", "[read]")
+{
+  const auto dir = test_support::scratch_dir("read_ok");
+  using test_support::write_text;
+  SECTION("polygons are triangulated") {
+    const std::string cube = "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                             "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+    Mesh m;
+    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "cube.off", cube), m);
+    CHECK(rr.triangulated_polygons == 6);
+    CHECK(num_faces(m) == 12);
+    CHECK(CGAL::is_closed(m));
+    CHECK(CGAL::to_double(PMP::area(m)) == Approx(6));
+  }
+  SECTION("inconsistent orientation is made consistent") {
+    const std::string flipped = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+    Mesh m;
+    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "flipped.off", flipped), m);
+    CHECK(rr.reoriented);
+    CHECK(CGAL::is_closed(m));
+    CHECK(num_faces(m) == 4);
+  }
+  SECTION("OBJ, ASCII PLY and ASCII STL are read") {
+    Mesh a, b, c;
+    PR::read_surface_mesh(write_text(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"), a);
+    PR::read_surface_mesh(write_text(dir / "t.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+      "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"), b);
+    std::ostringstream stl;
+    stl << "solid t\n";
+    const double P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const int T[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    for(auto& t : T) {
+      stl << "facet normal 0 0 0\nouter loop\n";
+      for(int k : t) stl << "vertex " << P[k][0] << " " << P[k][1] << " " << P[k][2] << "\n";
+      stl << "endloop\nendfacet\n";
+    }
+    stl << "endsolid t\n";
+    PR::read_surface_mesh(write_text(dir / "t.stl", stl.str()), c);
+    for(const Mesh* m : {&a, &b, &c}) {
+      CHECK(num_vertices(*m) == 4);
+      CHECK(num_faces(*m) == 4);
+      CHECK(CGAL::is_closed(*m));
+    }
+  }
+  SECTION("open meshes and several components are valid") {
+    Mesh m;
+    const std::string two = "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n";
+    PR::read_surface_mesh(write_text(dir / "two.off", two), m);
+    CHECK(PR::quality_report(m).number_of_components == 2);
+  }
+  SECTION("degenerate faces are removed on request") {
+    Mesh m;
+    const std::string strip = "OFF\n5 3 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n2 1 0\n3 0 1 3\n3 1 2 4\n3 1 4 3\n";
+    std::ofstream(dir / "ok.off") << strip;
+    PR::read_surface_mesh((dir / "ok.off").string(), m);
+    CHECK(num_faces(m) == 3);
+    const std::string with_flat = "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 0 2 1\n";
+    Mesh r;
+    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "flat.off", with_flat), r,
+                                                    PR::parameters::repair_degenerate_faces(true));
+    CHECK(rr.removed_degenerate_faces == 1);
+    CHECK(PR::quality_report(r).number_of_degenerate_faces == 0);
+  }
+}
+
+// ------------------------------------------------------------------ output
+TEST_CASE("outputs are written atomically: a failure leaves the destination untouched", "[write]")
+{
+  const auto dir = test_support::scratch_dir("write");
+  const Mesh m = analytic::sphere(8, 4).to_mesh<Mesh>();
+  const std::string out = (dir / "out.off").string();
+  test_support::write_text(out, "precious");
+
+  SECTION("a writer that fails midway does not clobber the file") {
+    CHECK_THROWS_AS(PR::write_file_atomically(out, [](std::ostream& os) { os << "partial"; throw std::runtime_error("boom"); }),
+                    std::runtime_error);
+    CHECK(test_support::read_text(out) == "precious");
+  }
+  SECTION("an unwritable destination throws Output_error and creates nothing") {
+    CHECK_THROWS_AS(PR::write_surface_mesh((dir / "no" / "such" / "dir.off").string(), m), PR::Output_error);
+    CHECK_THROWS_AS(PR::write_surface_mesh((dir / "mesh.unknown").string(), m), PR::Output_error);
+    CHECK_FALSE(std::filesystem::exists(dir / "no"));
+  }
+  SECTION("a successful write replaces the file and round-trips exactly") {
+    PR::write_surface_mesh(out, m);
+    Mesh back;
+    PR::read_surface_mesh(out, back);
+    CHECK(num_vertices(back) == num_vertices(m));
+    auto v = vertices(back).begin();
+    for(auto u : vertices(m)) CHECK(back.point(*v++) == m.point(u));
+  }
+  std::size_t leftovers = 0;
+  for(const auto& e : std::filesystem::directory_iterator(dir))
+    if(e.path().filename().string().find(".partial-") != std::string::npos) ++leftovers;
+  CHECK(leftovers == 0);
+}
+
+// ------------------------------------------------------------------ sizing
+TEST_CASE("sizing: edge length and disk radius follow from the vertex count", "[sizing]")
+{
+  // an ideal equilateral mesh of area A with V vertices: A = V * sqrt(3)/2 * L^2
+  const double L = PR::edge_length_from_vertex_count(10.0, 1000.0);
+  CHECK(1000.0 * std::sqrt(3.0) / 2 * L * L == Approx(10.0));
+  CHECK(PR::vertex_count_from_edge_length(10.0, L) == Approx(1000.0));
+  // Eq. 1 with rho = 1 is the hexagonal packing radius: N = 1 / (2 sqrt(3) r^2)
+  const double r = PR::disk_radius_from_vertex_count(1.0, 500.0, 1.0);
+  CHECK(1.0 / (2 * std::sqrt(3.0) * r * r) == Approx(500.0));
+  CHECK(PR::disk_radius_from_vertex_count(1.0, 500.0) == Approx(0.844 * r));
+  CHECK_THROWS_AS(PR::edge_length_from_vertex_count(-1, 10), std::invalid_argument);
+}
