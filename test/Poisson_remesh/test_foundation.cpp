@@ -306,8 +306,6 @@ PR::Input_error_code read_error(const std::string& file, std::string* message = 
   return PR::Input_error_code::cannot_open;
 }
 
-const char* tetrahedron_off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
-
 } // namespace
 
 TEST_CASE("reading refuses bad input with a specific error", "[read]")

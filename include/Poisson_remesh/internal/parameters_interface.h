@@ -13,6 +13,7 @@ POISSON_REMESH_add_named_parameter(sampling_radius_t, sampling_radius, sampling_
 POISSON_REMESH_add_named_parameter(density_t, density, density)
 POISSON_REMESH_add_named_parameter(feature_policy_t, feature_policy, feature_policy)
 POISSON_REMESH_add_named_parameter(sharp_angle_t, sharp_angle, sharp_angle)
+POISSON_REMESH_add_named_parameter(corner_angle_t, corner_angle, corner_angle)
 
 // the pluggable models of the package's concepts
 POISSON_REMESH_add_named_parameter(geodesic_oracle_t, geodesic_oracle, geodesic_oracle)
