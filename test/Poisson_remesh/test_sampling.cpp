@@ -3,16 +3,21 @@
 #include "test_support.h"
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/poisson_disk_sample.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_shortest_path.h>
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <complex>
+#include <map>
+#include <random>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
@@ -125,4 +130,317 @@ TEST_CASE("features of fandisk: sharp creases kept, short dangling chains remove
     for(std::size_t i = 1; i < c.halfedges.size(); ++i) CHECK(target(c.halfedges[i - 1], m) == source(c.halfedges[i], m));
   }
   CHECK(edges_in_curves == fs.number_of_feature_edges);
+}
+
+// ------------------------------------------------------------------ Poisson-disk sampling
+typedef PR::Poisson_sample<Mesh, Point> Sample;
+typedef CGAL::Surface_mesh_shortest_path_traits<K, Mesh> SMSP_traits;
+typedef CGAL::Surface_mesh_shortest_path<SMSP_traits> SMSP;
+
+namespace {
+
+std::vector<Sample> sample(const Mesh& m, double n, unsigned seed = 1, PR::Feature_policy policy = PR::Feature_policy::detect,
+                           PR::Poisson_disk_sampling_result* result = nullptr)
+{
+  std::vector<Sample> s;
+  auto r = PR::poisson_disk_sample(m, std::back_inserter(s),
+                                   PR::parameters::target_vertex_count(n).random_seed(seed).feature_policy(policy));
+  if(result) *result = r;
+  return s;
+}
+
+// CGAL 5.5's Surface_mesh_shortest_path mislocates a source lying exactly on an edge or a vertex
+// (a zero barycentric coordinate): the judge gets such sources nudged 1e-13 into the face.
+SMSP::Barycentric_coordinates judge_coordinates(std::array<double, 3> b)
+{
+  for(int i = 0; i < 3; ++i)
+    if(b[i] < 1e-13) {
+      const int j = b[(i + 1) % 3] > b[(i + 2) % 3] ? (i + 1) % 3 : (i + 2) % 3;
+      b[j] -= 1e-13 - b[i];
+      b[i] = 1e-13;
+    }
+  return {{b[0], b[1], b[2]}};
+}
+
+// The judges. CGAL 5.5's Surface_mesh_shortest_path is exact from one source but gives wrong
+// distances with many sources at once (seen here: 1.19 x 2r where single-source trees and our
+// oracle agree on 0.64 x 2r), and one tree on fandisk costs half a second. So:
+//  - full checks (every pair of close samples, every vertex, thousands of random points) use the
+//    exact oracle, itself checked against Surface_mesh_shortest_path in test_geodesic.cpp, or a
+//    closed form (plane, cylinder);
+//  - spot checks use single-source Surface_mesh_shortest_path trees on a random subset.
+typedef PR::Exact_geodesic_oracle<Mesh, Mesh::Property_map<Mesh::Vertex_index, Point>> Oracle;
+
+// smallest geodesic distance over 2r between two samples (corner pairs excepted), full check
+double smallest_separation_over_2r(const Mesh& m, const std::vector<Sample>& s, double r)
+{
+  Oracle o(m, m.points());
+  double smallest = HUGE_VAL;
+  for(std::size_t i = 0; i < s.size(); ++i) {
+    o.propagate(s[i].location, 2 * r);
+    for(std::size_t j = 0; j < s.size(); ++j) {
+      if(j == i || CGAL::squared_distance(s[i].point, s[j].point) >= 4 * r * r) continue;
+      if(s[i].kind == PR::Sample_kind::corner && s[j].kind == PR::Sample_kind::corner) continue;
+      const auto d = o.distance(s[j].location);
+      if(d) smallest = std::min(smallest, *d / (2 * r));
+    }
+  }
+  return smallest;
+}
+
+std::vector<Oracle::Face_location> random_locations(const Mesh& m, std::size_t n, unsigned seed)
+{
+  std::vector<Mesh::Face_index> fs;
+  std::vector<double> cumulative;
+  for(auto f : faces(m)) {
+    fs.push_back(f);
+    cumulative.push_back((cumulative.empty() ? 0 : cumulative.back()) + CGAL::to_double(PMP::face_area(f, m)));
+  }
+  std::mt19937_64 g(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Oracle::Face_location> out;
+  for(std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = std::min(fs.size() - 1, std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), u(g) * cumulative.back()) - cumulative.begin()));
+    double a = u(g), b = u(g);
+    if(a + b > 1) { a = 1 - a; b = 1 - b; }
+    out.push_back({fs[i], {{1 - a - b, a, b}}});
+  }
+  return out;
+}
+
+// largest distance over 2r from every vertex and `random_points` random surface points to the
+// nearest sample, full check (reports 2 when a point has no sample within 2r)
+double largest_gap_over_2r(const Mesh& m, const std::vector<Sample>& s, double r, std::size_t random_points)
+{
+  Oracle o(m, m.points());
+  std::vector<Oracle::Face_location> queries = random_locations(m, random_points, 7);
+  for(auto v : vertices(m)) {
+    auto h = halfedge(v, m);
+    if(is_border(h, m)) h = prev(opposite(h, m), m);
+    queries.push_back(PR::location_on_halfedge(h, 1.0, m));
+  }
+  double largest = 0;
+  for(const auto& q : queries) {
+    const Point p = PMP::construct_point(q, m);
+    o.propagate(q, 2 * r * (1 + 1e-6));
+    double nearest = 2;
+    for(const Sample& x : s) {
+      if(CGAL::squared_distance(p, x.point) > 4.01 * r * r) continue;
+      const auto d = o.distance(x.location);
+      if(d) nearest = std::min(nearest, *d / (2 * r));
+    }
+    largest = std::max(largest, nearest);
+  }
+  return largest;
+}
+
+// Spot checks with single-source Surface_mesh_shortest_path trees: `n` random samples against
+// every sample near them, and `n` random points against the samples near them.
+void check_with_shortest_path_judge(const Mesh& m, const std::vector<Sample>& s, double r, std::size_t n)
+{
+  std::mt19937 g(13);
+  for(std::size_t k = 0; k < n; ++k) {
+    const Sample& a = s[g() % s.size()];
+    SMSP smsp(m);
+    smsp.add_source_point(a.location.first, judge_coordinates(a.location.second));
+    smsp.build_sequence_tree();
+    for(const Sample& b : s) {
+      if(&a == &b || CGAL::squared_distance(a.point, b.point) >= 4 * r * r) continue;
+      if(a.kind == PR::Sample_kind::corner && b.kind == PR::Sample_kind::corner) continue;
+      CHECK(smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first >= 2 * r * (1 - 1e-6));
+    }
+  }
+  for(const auto& q : random_locations(m, n, 17)) {
+    SMSP smsp(m);
+    smsp.add_source_point(q.first, judge_coordinates(q.second));
+    smsp.build_sequence_tree();
+    const Point p = PMP::construct_point(q, m);
+    double nearest = HUGE_VAL;
+    for(const Sample& b : s)
+      if(CGAL::squared_distance(p, b.point) <= 4 * r * r)
+        nearest = std::min(nearest, smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first);
+    CHECK(nearest <= 2 * r * (1 + 1e-6));
+  }
+}
+
+void check_on_surface(const Mesh& m, const std::vector<Sample>& s)
+{
+  for(const Sample& x : s) {
+    const auto& b = x.location.second;
+    CHECK(b[0] >= 0); CHECK(b[1] >= 0); CHECK(b[2] >= 0);
+    CHECK(std::abs(b[0] + b[1] + b[2] - 1) < 1e-12);
+    CHECK(CGAL::squared_distance(PMP::construct_point(x.location, m), x.point) < 1e-20);
+  }
+}
+
+} // namespace
+
+TEST_CASE("samples are at least 2r apart and cover a plane (maximal set)", "[sampling]")
+{
+  const Mesh m = analytic::plane(20, 20).to_mesh<Mesh>();
+  PR::Poisson_disk_sampling_result r;
+  const auto s = sample(m, 800, 3, PR::Feature_policy::detect, &r);
+  check_on_surface(m, s);
+  // on a plane the geodesic distance is the Euclidean distance
+  double smallest = HUGE_VAL;
+  for(std::size_t i = 0; i < s.size(); ++i)
+    for(std::size_t j = i + 1; j < s.size(); ++j)
+      if(!(s[i].kind == PR::Sample_kind::corner && s[j].kind == PR::Sample_kind::corner))
+        smallest = std::min(smallest, std::sqrt(CGAL::squared_distance(s[i].point, s[j].point)));
+  CHECK(smallest >= 2 * r.radius * (1 - 1e-6));
+  CHECK(largest_gap_over_2r(m, s, r.radius, 5000) <= 1 + 1e-6);
+  CHECK(r.number_of_corners == 4);
+  CHECK(r.statistics.open_iso_curves == 0);
+}
+
+TEST_CASE("samples are at least 2r apart and cover curved surfaces (judge: Surface_mesh_shortest_path)", "[sampling]")
+{
+  SECTION("open prism cylinder: closed-form geodesics on the unrolled strip") {
+    const std::size_t n = 40;
+    const Mesh m = analytic::cylinder(n, 20).to_mesh<Mesh>();
+    PR::Poisson_disk_sampling_result r;
+    const auto s = sample(m, 600, 5, PR::Feature_policy::detect, &r);
+    check_on_surface(m, s);
+    // arc-length position along the regular n-gon of circumradius 1
+    const double side = 2 * std::sin(M_PI / n), perimeter = n * side;
+    auto position = [&](const Point& p) {
+      double t = std::atan2(p.y(), p.x());
+      if(t < 0) t += 2 * M_PI;
+      const std::size_t k = std::min(n - 1, std::size_t(t / (2 * M_PI / n)));
+      const Point a(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0);
+      return k * side + std::sqrt(CGAL::squared_distance(a, Point(p.x(), p.y(), 0)));
+    };
+    auto geodesic = [&](const Point& p, const Point& q) {
+      double ds = std::abs(position(p) - position(q));
+      ds = std::min(ds, perimeter - ds);
+      return std::hypot(ds, p.z() - q.z());
+    };
+    double smallest = HUGE_VAL;
+    for(std::size_t i = 0; i < s.size(); ++i)
+      for(std::size_t j = i + 1; j < s.size(); ++j) smallest = std::min(smallest, geodesic(s[i].point, s[j].point));
+    CHECK(smallest >= 2 * r.radius * (1 - 1e-6));
+    double largest = 0;
+    for(const auto& q : random_locations(m, 5000, 3)) {
+      const Point p = PMP::construct_point(q, m);
+      double nearest = HUGE_VAL;
+      for(const Sample& x : s) nearest = std::min(nearest, geodesic(p, x.point));
+      largest = std::max(largest, nearest);
+    }
+    CHECK(largest <= 2 * r.radius * (1 + 1e-6));
+    check_with_shortest_path_judge(m, s, r.radius, 20);
+  }
+  SECTION("torus (genus 1)") {
+    const Mesh m = analytic::torus(48, 24).to_mesh<Mesh>();
+    PR::Poisson_disk_sampling_result r;
+    const auto s = sample(m, 700, 2, PR::Feature_policy::detect, &r);
+    CHECK(smallest_separation_over_2r(m, s, r.radius) >= 1 - 1e-6);
+    CHECK(largest_gap_over_2r(m, s, r.radius, 3000) <= 1 + 1e-6);
+    check_with_shortest_path_judge(m, s, r.radius, 30);
+  }
+  for(const std::string name : {"meshes/elephant.off", "meshes/fandisk.off"}) {
+    SECTION(name) {
+      Mesh m;
+      PR::read_surface_mesh(test_support::data_mesh(name), m);
+      PR::Poisson_disk_sampling_result r;
+      const auto s = sample(m, 1500, 11, PR::Feature_policy::detect, &r);
+      check_on_surface(m, s);
+      CHECK(smallest_separation_over_2r(m, s, r.radius) >= 1 - 1e-6);
+      CHECK(largest_gap_over_2r(m, s, r.radius, 5000) <= 1 + 1e-6);
+      if(name == "meshes/elephant.off") check_with_shortest_path_judge(m, s, r.radius, 25);
+    }
+  }
+}
+
+TEST_CASE("the same seed gives the same samples, another seed others", "[sampling]")
+{
+  Mesh m;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/triceratops.off"), m);
+  const auto a = sample(m, 800, 42), b = sample(m, 800, 42), c = sample(m, 800, 43);
+  REQUIRE(a.size() == b.size());
+  for(std::size_t i = 0; i < a.size(); ++i) CHECK(a[i].point == b[i].point);
+  bool differ = a.size() != c.size();
+  for(std::size_t i = 0; !differ && i < a.size(); ++i) differ = a[i].point != c[i].point;
+  CHECK(differ);
+}
+
+TEST_CASE("levels of detail are nested and each level is a maximal set", "[sampling][levels]")
+{
+  const Mesh m = analytic::cylinder(40, 20).to_mesh<Mesh>();
+  const std::vector<double> radii = {0.2, 0.12, 0.07};
+  std::vector<Sample> s;
+  const auto results = PR::poisson_disk_sample_levels(m, radii, std::back_inserter(s), PR::parameters::random_seed(9u));
+  REQUIRE(results.size() == 3);
+  for(std::size_t k = 0; k < radii.size(); ++k) {
+    std::vector<Sample> level;
+    for(const Sample& x : s) if(x.level <= k) level.push_back(x);
+    CHECK(level.size() == results[k].number_of_samples);
+    if(k > 0) CHECK(results[k].number_of_samples > results[k - 1].number_of_samples);
+    CHECK(smallest_separation_over_2r(m, level, radii[k]) >= 1 - 1e-6);
+    CHECK(largest_gap_over_2r(m, level, radii[k], 2000) <= 1 + 1e-6);
+  }
+  // nested: the samples of level 0 come first, unchanged
+  std::vector<Sample> coarse;
+  PR::poisson_disk_sample(m, std::back_inserter(coarse), PR::parameters::sampling_radius(0.2).random_seed(9u));
+  std::size_t level0 = 0;
+  for(const Sample& x : s) if(x.level == 0) ++level0;
+  REQUIRE(level0 == coarse.size());
+  for(std::size_t i = 0; i < coarse.size(); ++i) CHECK(s[i].point == coarse[i].point);
+}
+
+TEST_CASE("the sample count lands near the target (Eq. 1, rho = 0.844)", "[sampling][count]")
+{
+  for(const std::string name : {"meshes/triceratops.off", "meshes/elephant.off"}) {
+    Mesh m;
+    PR::read_surface_mesh(test_support::data_mesh(name), m);
+    const double n = double(num_vertices(m));
+    const double got = double(sample(m, n, 1).size());
+    INFO(name << ": " << got << " samples for " << n);
+    CHECK(std::abs(got - n) <= 0.05 * n);
+  }
+}
+
+TEST_CASE("samples on a flat square have a blue-noise spectrum", "[sampling][spectrum]")
+{
+  const Mesh m = analytic::plane(30, 30).to_mesh<Mesh>();
+  PR::Poisson_disk_sampling_result r;
+  const auto s = sample(m, 2500, 4, PR::Feature_policy::detect, &r);
+  // radially averaged periodogram |sum exp(-2 pi i f.x)|^2 / N, in rings of frequency
+  const double f0 = 1 / (2 * r.radius);
+  const int rings = 40;
+  const double fmax = 2 * f0;
+  std::vector<double> power(rings, 0);
+  std::vector<int> count(rings, 0);
+  const int grid = 60;
+  for(int i = -grid; i <= grid; ++i)
+    for(int j = 0; j <= grid; ++j) {
+      const double fx = fmax * i / grid, fy = fmax * j / grid, f = std::hypot(fx, fy);
+      const int ring = int(f / fmax * rings);
+      if(ring == 0 || ring >= rings) continue;
+      std::complex<double> sum = 0;
+      for(const Sample& x : s) {
+        // Hann window over the square: no leakage from the square's own edges
+        const double w = std::pow(std::sin(M_PI * x.point.x()) * std::sin(M_PI * x.point.y()), 2);
+        const double phase = -2 * M_PI * (fx * x.point.x() + fy * x.point.y());
+        sum += w * std::complex<double>(std::cos(phase), std::sin(phase));
+      }
+      power[ring] += std::norm(sum);
+      ++count[ring];
+    }
+  double n_surface = 0; // sum of squared window weights: white noise has power 1
+  for(const Sample& x : s) n_surface += std::pow(std::sin(M_PI * x.point.x()) * std::sin(M_PI * x.point.y()), 4);
+  int peak = 1;
+  double low = 0;
+  int low_rings = 0;
+  for(int k = 1; k < rings; ++k) {
+    power[k] /= count[k] * n_surface;
+    const double f = (k + 0.5) * fmax / rings;
+    if(f > 0.3 * f0 && power[k] > power[peak]) peak = k;
+    if(f > 0.1 * f0 && f < 0.5 * f0) { low += power[k]; ++low_rings; }
+  }
+  const double f_peak = (peak + 0.5) * fmax / rings;
+  INFO("peak at " << f_peak / f0 << " / (2r), low-frequency energy " << low / low_rings);
+  CHECK(f_peak > 0.7 * f0);
+  CHECK(f_peak < 1.4 * f0);
+  CHECK(low / low_rings < 0.25);   // white noise would be 1
+  CHECK(power[peak] > 1.2);
 }

@@ -1,0 +1,330 @@
+// Poisson_remesh/Boundary/Circular_available_boundary.h
+//
+// The available boundary of uniform geodesic Poisson-disk sampling (paper §4.1, §4.2.3), a model
+// of the concept BoundaryCurve: the parts of the samples' iso-distance curves at 2r that are not
+// inside the expellant disk D(s, 2r) of any other sample -- the boundary of the union of the
+// disks. Each piece is a circular arc inside one face (in that face's 2D frame, see
+// Geodesic/Exact_geodesic_oracle.h), owned by the sample whose curve it belongs to.
+//
+// Updating with a new sample q (§4.2.3) splits arcs where the new curve B_new crosses the stored
+// boundary B_whole -- the computation is local to each face, as in the paper -- and then decides
+// for every resulting piece whether it is kept. Instead of the paper's ordering and parity rules,
+// each piece is decided by evaluating exact distances at its midpoint (a way the issue allows,
+// and one that gives the same set while needing no global orientation bookkeeping):
+//   - a stored piece is dropped when d(q, midpoint) < 2r (q's field, just propagated);
+//   - a new piece is dropped when d(s, midpoint) < 2r for an earlier sample s (the caller's
+//     predicate, which propagates from the midpoint only when some sample is close enough).
+// Random points are drawn uniformly by arc length with a Fenwick tree over arc lengths.
+
+#ifndef POISSON_REMESH_BOUNDARY_CIRCULAR_AVAILABLE_BOUNDARY_H
+#define POISSON_REMESH_BOUNDARY_CIRCULAR_AVAILABLE_BOUNDARY_H
+
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Polygon_mesh_processing/locate.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace Poisson_remesh {
+namespace internal {
+
+constexpr double two_pi = 6.28318530717958647692;
+
+/// Fenwick (binary indexed) tree of non-negative weights, growing on demand.
+class Fenwick_tree
+{
+public:
+  void resize(std::size_t n)
+  {
+    if(n <= weights_.size()) return;
+    std::size_t cap = std::max<std::size_t>(16, weights_.size());
+    while(cap < n) cap *= 2;
+    weights_.resize(cap, 0.0);
+    rebuild();
+  }
+  void set(std::size_t i, double w)
+  {
+    resize(i + 1);
+    const double delta = w - weights_[i];
+    weights_[i] = w;
+    for(std::size_t k = i + 1; k <= tree_.size(); k += k & (~k + 1)) tree_[k - 1] += delta;
+  }
+  double weight(std::size_t i) const { return i < weights_.size() ? weights_[i] : 0.0; }
+  double total() const
+  {
+    double s = 0;
+    for(std::size_t k = tree_.size(); k > 0; k -= k & (~k + 1)) s += tree_[k - 1];
+    return s;
+  }
+  /// the index i with prefix(i) <= u < prefix(i + 1), for 0 <= u < total()
+  std::size_t find(double u, double& rest) const
+  {
+    std::size_t pos = 0;
+    std::size_t step = 1;
+    while(step * 2 <= tree_.size()) step *= 2;
+    for(; step > 0; step /= 2)
+      if(pos + step <= tree_.size() && tree_[pos + step - 1] <= u) { pos += step; u -= tree_[pos - 1]; }
+    rest = u;
+    return std::min(pos, weights_.size() - 1);
+  }
+  void rebuild()
+  {
+    tree_.assign(weights_.size(), 0.0);
+    for(std::size_t i = 0; i < weights_.size(); ++i) {
+      tree_[i] += weights_[i];
+      const std::size_t parent = (i + 1) + ((i + 1) & (~(i + 1) + 1));
+      if(parent <= tree_.size()) tree_[parent - 1] += tree_[i];
+    }
+  }
+  void clear() { weights_.clear(); tree_.clear(); }
+private:
+  std::vector<double> weights_, tree_;
+};
+
+/// Parameters in [0, 1] of arc `a` where it meets the circle of arc `b` inside `b`'s angular range.
+template <class Arc>
+void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<double>& out)
+{
+  const double dx = b.center[0] - a.center[0], dy = b.center[1] - a.center[1];
+  const double d2 = dx * dx + dy * dy, d = std::sqrt(d2);
+  const double ra = a.radius, rb = b.radius;
+  if(!(d > 0) || d > ra + rb || d < std::abs(ra - rb)) return;
+  const double x = (d2 + ra * ra - rb * rb) / (2 * d);     // along the center line, from a's center
+  const double h = std::sqrt(std::max(0.0, ra * ra - x * x));
+  const double ux = dx / d, uy = dy / d;
+  const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start;
+  const double tol = 1e-12;
+  for(int sgn : {-1, 1}) {
+    const double px = a.center[0] + x * ux - sgn * h * uy, py = a.center[1] + x * uy + sgn * h * ux;
+    double da = std::atan2(py - a.center[1], px - a.center[0]) - a.theta_start;
+    da -= two_pi * std::floor(da / two_pi);
+    double db = std::atan2(py - b.center[1], px - b.center[0]) - b.theta_start;
+    db -= two_pi * std::floor(db / two_pi);
+    if(db > span_b + tol && db < two_pi - tol) continue;   // not on b
+    if(da > span_a + tol && da < two_pi - tol) continue;   // not on a
+    const double t = (da > span_a + tol) ? 0.0 : (span_a > 0 ? std::min(1.0, da / span_a) : 0.0);
+    out.push_back(t);
+    if(h == 0) break;
+  }
+}
+
+/// Arc `a` restricted to parameters [t0, t1].
+template <class Arc>
+Arc sub_arc(const Arc& a, double t0, double t1)
+{
+  Arc r = a;
+  const double span = a.theta_end - a.theta_start;
+  r.theta_start = a.theta_start + t0 * span;
+  r.theta_end = a.theta_start + t1 * span;
+  return r;
+}
+
+} // namespace internal
+
+/// The available boundary of circular arcs (BoundaryCurve model for uniform density).
+template <class TriangleMesh, class Arc>
+class Circular_available_boundary
+{
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::face_descriptor face_descriptor;
+  typedef typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type FIM;
+
+public:
+  typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+
+  struct Stored_arc
+  {
+    Arc arc;
+    std::size_t sample;
+  };
+
+  explicit Circular_available_boundary(const TriangleMesh& tm)
+    : tm_(tm), fim_(CGAL::get_initialized_face_index_map(tm)), arcs_in_face_(num_faces(tm))
+  {}
+
+  /// Pieces shorter than this are dropped (set to a tiny fraction of r by the sampler).
+  void set_minimum_length(double l) { min_length_ = l; }
+
+  bool empty() const { return alive_count_ == 0; }
+  std::size_t number_of_arcs() const { return alive_count_; }
+  double length() const { return fenwick_.total(); }
+
+  /// All live arcs, for inspection and tests.
+  template <class OutputIterator>
+  OutputIterator arcs(OutputIterator out) const
+  {
+    for(std::size_t i = 0; i < arcs_.size(); ++i) if(alive_[i]) *out++ = arcs_[i];
+    return out;
+  }
+
+  void clear()
+  {
+    arcs_.clear();
+    alive_.clear();
+    fenwick_.clear();
+    for(auto& l : arcs_in_face_) l.clear();
+    alive_count_ = 0;
+  }
+
+  /// A point drawn uniformly by arc length on the live arcs; `u01` returns uniform numbers in [0, 1).
+  template <class Uniform01>
+  Face_location pick(Uniform01&& u01)
+  {
+    for(int attempt = 0;; ++attempt) {
+      const double total = fenwick_.total();
+      double rest = 0;
+      const std::size_t i = fenwick_.find(u01() * total, rest);
+      if(i < arcs_.size() && alive_[i]) {
+        const double len = fenwick_.weight(i);
+        const double t = len > 0 ? std::min(1.0, std::max(0.0, rest / len)) : 0.5;
+        return location(arcs_[i].arc, t);
+      }
+      fenwick_.rebuild(); // rounding drift: rebuild and draw again
+      if(attempt > 3) {   // fall back to the first live arc
+        for(std::size_t k = 0; k < arcs_.size(); ++k) if(alive_[k]) return location(arcs_[k].arc, u01());
+      }
+    }
+  }
+
+  /// The update of §4.2.3 with the iso-curve `new_arcs` of sample `sample`:
+  ///   faces                   the faces the new disk D(q, 2r) can meet (the sampler passes the
+  ///                           faces around the vertices the propagation reached, the faces of
+  ///                           `new_arcs` and q's face: a face meeting the disk contains q, is
+  ///                           crossed by its boundary, or has a vertex inside it);
+  ///   in_new_disk(location)   true when the location is closer than 2r to the new sample;
+  ///   in_old_disks(location)  true when the location is closer than 2r to an earlier sample.
+  template <class FaceRange, class InNewDisk, class InOldDisks>
+  void update(const std::vector<Arc>& new_arcs, std::size_t sample, const FaceRange& faces,
+              InNewDisk in_new_disk, InOldDisks in_old_disks)
+  {
+    // split parameters of the stored arcs and of the new arcs, face by face (§4.2.3: arcs only
+    // meet inside a common triangle)
+    std::vector<std::pair<std::size_t, std::vector<double>>> stored_cuts;
+    std::vector<std::vector<double>> new_cuts(new_arcs.size());
+    for(std::size_t j = 0; j < new_arcs.size(); ++j) {
+      for(std::size_t i : arcs_in_face_[get(fim_, new_arcs[j].face)]) {
+        std::vector<double> ti;
+        internal::circle_arc_crossings(arcs_[i].arc, new_arcs[j], ti);
+        internal::circle_arc_crossings(new_arcs[j], arcs_[i].arc, new_cuts[j]);
+        if(!ti.empty()) stored_cuts.emplace_back(i, std::move(ti));
+      }
+    }
+    std::sort(stored_cuts.begin(), stored_cuts.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    // 1. stored arcs in the faces the new disk meets: drop what it covers
+    std::vector<std::size_t> candidates;
+    for(face_descriptor f : faces) {
+      const auto& list = arcs_in_face_[get(fim_, f)];
+      candidates.insert(candidates.end(), list.begin(), list.end());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    std::size_t k = 0;
+    for(std::size_t i : candidates) {
+      std::vector<double> cuts;
+      while(k < stored_cuts.size() && stored_cuts[k].first < i) ++k;
+      for(std::size_t l = k; l < stored_cuts.size() && stored_cuts[l].first == i; ++l)
+        cuts.insert(cuts.end(), stored_cuts[l].second.begin(), stored_cuts[l].second.end());
+      if(alive_[i]) replace_by_kept_pieces(i, cuts, [&](const Face_location& loc) { return !in_new_disk(loc); });
+    }
+    // 2. new arcs: keep what no earlier disk covers
+    for(std::size_t j = 0; j < new_arcs.size(); ++j) {
+      std::vector<Arc> pieces;
+      split(new_arcs[j], new_cuts[j], pieces);
+      for(const Arc& piece : pieces) {
+        if(piece.length() < min_length_) continue;
+        if(!in_old_disks(location(piece, 0.5))) add(piece, sample);
+      }
+    }
+  }
+
+  Face_location location(const Arc& a, double t) const
+  {
+    std::array<double, 3> b = a.barycentric(t);
+    double s = 0;
+    for(double& x : b) { x = std::max(0.0, x); s += x; }
+    if(s > 0) for(double& x : b) x /= s;
+    return {a.face, b};
+  }
+
+  const Stored_arc& stored_arc(std::size_t i) const { return arcs_[i]; }
+  std::size_t number_of_slots() const { return arcs_.size(); }
+  bool is_alive(std::size_t i) const { return alive_[i]; }
+
+private:
+  void add(const Arc& a, std::size_t sample)
+  {
+    const std::size_t id = arcs_.size();
+    arcs_.push_back({a, sample});
+    alive_.push_back(1);
+    fenwick_.set(id, a.length());
+    arcs_in_face_[get(fim_, a.face)].push_back(id);
+    ++alive_count_;
+  }
+
+  void kill(std::size_t i)
+  {
+    alive_[i] = 0;
+    fenwick_.set(i, 0.0);
+    --alive_count_;
+    auto& list = arcs_in_face_[get(fim_, arcs_[i].arc.face)];
+    list.erase(std::remove(list.begin(), list.end(), i), list.end());
+  }
+
+  static void split(const Arc& a, std::vector<double>& cuts, std::vector<Arc>& pieces)
+  {
+    std::sort(cuts.begin(), cuts.end());
+    double t0 = 0;
+    for(double t : cuts) {
+      if(t <= t0 || t >= 1) continue;
+      pieces.push_back(internal::sub_arc(a, t0, t));
+      t0 = t;
+    }
+    pieces.push_back(internal::sub_arc(a, t0, 1.0));
+  }
+
+  template <class Keep>
+  void replace_by_kept_pieces(std::size_t i, std::vector<double>& cuts, Keep keep)
+  {
+    std::vector<Arc> pieces;
+    const Arc a = arcs_[i].arc;
+    split(a, cuts, pieces);
+    std::vector<char> kept(pieces.size());
+    bool all = true;
+    for(std::size_t k = 0; k < pieces.size(); ++k) {
+      kept[k] = pieces[k].length() >= min_length_ && keep(location(pieces[k], 0.5));
+      all = all && kept[k];
+    }
+    if(all && pieces.size() == 1) return;
+    const std::size_t sample = arcs_[i].sample;
+    kill(i);
+    // merge consecutive kept pieces back together
+    for(std::size_t k = 0; k < pieces.size();) {
+      if(!kept[k]) { ++k; continue; }
+      std::size_t l = k;
+      while(l + 1 < pieces.size() && kept[l + 1]) ++l;
+      Arc merged = pieces[k];
+      merged.theta_end = pieces[l].theta_end;
+      add(merged, sample);
+      k = l + 1;
+    }
+  }
+
+  const TriangleMesh& tm_;
+  FIM fim_;
+  std::vector<Stored_arc> arcs_;
+  std::vector<char> alive_;
+  std::vector<std::vector<std::size_t>> arcs_in_face_;
+  internal::Fenwick_tree fenwick_;
+  std::size_t alive_count_ = 0;
+  double min_length_ = 0;
+};
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_BOUNDARY_CIRCULAR_AVAILABLE_BOUNDARY_H

@@ -1,0 +1,1477 @@
+// Copyright (c) 2026 Poisson_remesh contributors.
+//
+// Exact_geodesic_oracle
+// =====================
+//
+// Implements the geodesic machinery of "Direct Sampling on Surfaces for High
+// Quality Remeshing", Section 4.2.2 (computing the geodesic equidistant curve
+// of a sample, truncated window propagation) and Section 5.2 (window
+// propagation stopped by a user predicate, used for the adaptive available
+// boundary).  The geodesic computation itself is the exact "window
+// propagation" algorithm of Mitchell, Mount and Papadimitriou as described and
+// simplified by Surazhsky, Surazhsky, Kirsanov, Gortler and Hoppe, "Fast
+// exact and approximate geodesics on meshes", SIGGRAPH 2005 (Section 3 of that
+// paper: windows, pseudo-sources at saddle and boundary vertices, window
+// trimming on edges, priority queue ordered by the window minimal distance).
+//
+// This class is a model of the concept `GeodesicOracle`
+// (see doc/Poisson_remesh/Concepts/GeodesicOracle.h).
+//
+// Units: all distances are in the length unit of the input mesh coordinates.
+//
+// Face-local 2D frame convention (used by `Iso_arc`):
+//   Let h0 = halfedge(f), v0 = source(h0), v1 = target(h0),
+//   v2 = target(next(h0)).  The face is laid out isometrically in the plane
+//   with v0 = (0,0), v1 = (|v0v1|, 0) and v2 = (x2, y2) with y2 > 0, so the
+//   face is counter-clockwise in its frame (consistent with the mesh
+//   orientation).  The barycentric coordinates of a `Face_location` use the
+//   same vertex order (this is also CGAL's PMP/locate convention).
+//
+// Complexity: let F be the number of faces inside the propagation disk.  For
+// well-shaped meshes a propagation touches O(F) windows in practice (the
+// theoretical worst case of the method is O(F^2 log F)).  All per-element
+// storage is allocated once in the constructor (O(|V| + |F|)); a propagation
+// only resets the elements it touched, so small truncated propagations cost
+// time proportional to the disk size, not to the mesh size.
+//
+// Numerical tolerances: two window distance functions closer than
+// 1e-13 x (bounding box diagonal) are considered equal when windows are
+// trimmed (the existing window wins ties).  No window of positive width is
+// ever dropped: even a very narrow window can fan out into a wide wedge when
+// its (pseudo-)source is close to its edge, and dropping it would leave a
+// crack in the distance field.  Measured agreement with CGAL::Surface_mesh_shortest_path
+// is ~1e-15 x diagonal on well-shaped meshes and ~3e-14 x diagonal on meshes
+// with needle triangles.
+//
+// Thread safety: `propagate()` modifies the oracle; the const queries do not
+// modify it and may run concurrently.  Use one oracle per thread to propagate
+// in parallel (the mesh is only read).
+
+#ifndef POISSON_REMESH_GEODESIC_EXACT_GEODESIC_ORACLE_H
+#define POISSON_REMESH_GEODESIC_EXACT_GEODESIC_ORACLE_H
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Polygon_mesh_processing/locate.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace Poisson_remesh {
+
+// ---------------------------------------------------------------------------
+// Iso-distance curves (shared by all geodesic oracles of the package)
+// ---------------------------------------------------------------------------
+
+/// One piece of an iso-distance curve, contained in a single face.
+/// It is either a circular arc (exact oracle) or a straight segment
+/// (`is_segment == true`, approximate oracle).  All 2D quantities are given
+/// in the face-local 2D frame described at the top of this file.
+template <class FaceDescriptor, class Point3>
+struct Iso_arc
+{
+  FaceDescriptor face;
+  /// circle center: the unfolded (pseudo-)source in the face frame
+  std::array<double, 2> center{{0., 0.}};
+  /// circle radius, i.e. `R - sigma`
+  double radius = 0.;
+  /// geodesic distance from the source to `center` (the pseudo-source)
+  double sigma = 0.;
+  /// counter-clockwise angular range, `theta_start <= theta_end <= theta_start + 2 pi`
+  double theta_start = 0., theta_end = 0.;
+  /// straight-segment pieces (approximate oracle): endpoints in the face frame
+  bool is_segment = false;
+  std::array<double, 2> segment_start{{0., 0.}}, segment_end{{0., 0.}};
+  /// 3D positions of v0, v1, v2 and the 2D layout (|v0v1|, x2, y2) of the face
+  std::array<Point3, 3> corners;
+  std::array<double, 3> layout{{1., 0., 1.}};
+
+  /// point of parameter `t` in [0,1] in the face frame
+  std::array<double, 2> point_2(double t) const
+  {
+    if(is_segment)
+      return {{segment_start[0] + t * (segment_end[0] - segment_start[0]),
+               segment_start[1] + t * (segment_end[1] - segment_start[1])}};
+    const double th = theta_start + t * (theta_end - theta_start);
+    return {{center[0] + radius * std::cos(th), center[1] + radius * std::sin(th)}};
+  }
+  /// barycentric coordinates (w.r.t. v0, v1, v2) of the point of parameter `t`
+  std::array<double, 3> barycentric(double t) const
+  {
+    const std::array<double, 2> p = point_2(t);
+    const double l0 = layout[0], x2 = layout[1], y2 = layout[2];
+    double b2 = p[1] / y2;
+    double b1 = (p[0] - b2 * x2) / l0;
+    double b0 = 1. - b1 - b2;
+    return {{b0, b1, b2}};
+  }
+  /// 3D point of parameter `t` in [0,1]
+  Point3 point(double t) const
+  {
+    const std::array<double, 3> b = barycentric(t);
+    return Point3(b[0] * corners[0].x() + b[1] * corners[1].x() + b[2] * corners[2].x(),
+                  b[0] * corners[0].y() + b[1] * corners[1].y() + b[2] * corners[2].y(),
+                  b[0] * corners[0].z() + b[1] * corners[1].z() + b[2] * corners[2].z());
+  }
+  /// length of the arc (isometric to the surface length)
+  double length() const
+  {
+    if(is_segment)
+      return std::hypot(segment_end[0] - segment_start[0], segment_end[1] - segment_start[1]);
+    return radius * (theta_end - theta_start);
+  }
+};
+
+/// An ordered chain of arcs.  `closed` is true when the last arc ends where the
+/// first one starts; open chains end on the mesh border.  Arcs are oriented
+/// counter-clockwise around their centers, i.e. the region closer than `R`
+/// to the source lies on the left of the curve (seen from the outward side
+/// of the consistently oriented mesh).
+template <class FaceDescriptor, class Point3>
+struct Iso_curve
+{
+  std::vector<Iso_arc<FaceDescriptor, Point3> > arcs;
+  bool closed = false;
+};
+
+namespace internal {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Vec2
+{
+  double x, y;
+};
+inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+
+/// Area of a triangle from its edge lengths (Kahan's stable Heron formula).
+inline double stable_area(double a, double b, double c)
+{
+  if(a < b) std::swap(a, b);
+  if(a < c) std::swap(a, c);
+  if(b < c) std::swap(b, c);
+  const double p = (a + (b + c)) * (c - (a - b)) * (c + (a - b)) * (a + (b - c));
+  return p <= 0. ? 0. : 0.25 * std::sqrt(p);
+}
+
+/// Position of the apex of a triangle with base [0,L] on the x axis, given
+/// the lengths `la` (apex to origin) and `lb` (apex to (L,0)); apex has y >= 0.
+inline Vec2 layout_apex(double L, double la, double lb)
+{
+  const double x = (L * L + (la - lb) * (la + lb)) / (2. * L);
+  const double y = 2. * stable_area(L, la, lb) / L;
+  return {x, y};
+}
+
+/// Index-based copy of a triangle mesh (faces, adjacency, edge lengths and
+/// the 2D layouts of every face), built once and shared by the oracles.
+template <class TriangleMesh, class VertexPointMap>
+class Indexed_triangle_mesh
+{
+public:
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type VIM;
+  typedef typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type FIM;
+  typedef typename CGAL::GetInitializedHalfedgeIndexMap<TriangleMesh>::const_type HIM;
+
+  Indexed_triangle_mesh(const TriangleMesh& tm, VertexPointMap vpm)
+    : vim(CGAL::get_initialized_vertex_index_map(tm)),
+      fim(CGAL::get_initialized_face_index_map(tm)),
+      him(CGAL::get_initialized_halfedge_index_map(tm))
+  {
+    std::size_t nv = 0, nf = 0, nh = 0;
+    for(vertex_descriptor v : vertices(tm)) nv = (std::max)(nv, std::size_t(get(vim, v)) + 1);
+    for(face_descriptor f : faces(tm)) nf = (std::max)(nf, std::size_t(get(fim, f)) + 1);
+    for(halfedge_descriptor h : halfedges(tm)) nh = (std::max)(nh, std::size_t(get(him, h)) + 1);
+    vertex_of.resize(nv);
+    face_of.resize(nf);
+    valid_face.assign(nf, 0);
+    pos.assign(nv, std::array<double, 3>{{0., 0., 0.}});
+    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+    for(vertex_descriptor v : vertices(tm))
+    {
+      const int i = int(get(vim, v));
+      vertex_of[i] = v;
+      const auto& p = get(vpm, v);
+      pos[i] = {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+      for(int c = 0; c < 3; ++c)
+      {
+        lo[c] = (std::min)(lo[c], pos[i][c]);
+        hi[c] = (std::max)(hi[c], pos[i][c]);
+      }
+    }
+    diag = (nv == 0) ? 1. : std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if(!(diag > 0.)) diag = 1.;
+
+    fv.assign(3 * nf, -1);
+    fadj.assign(3 * nf, -1);
+    fedge.assign(3 * nf, -1);
+    slot_halfedge.resize(3 * nf);
+    std::vector<int> hslot(nh, -1);
+    for(face_descriptor f : faces(tm))
+    {
+      const int fi = int(get(fim, f));
+      face_of[fi] = f;
+      valid_face[fi] = 1;
+      halfedge_descriptor h = halfedge(f, tm);
+      int k = 0;
+      for(halfedge_descriptor hh : CGAL::halfedges_around_face(h, tm))
+      {
+        if(k >= 3) throw std::invalid_argument("Poisson_remesh geodesic oracle: the mesh is not a triangle mesh");
+        fv[3 * fi + k] = int(get(vim, source(hh, tm)));
+        slot_halfedge[3 * fi + k] = hh;
+        hslot[get(him, hh)] = 3 * fi + k;
+        ++k;
+      }
+      if(k != 3) throw std::invalid_argument("Poisson_remesh geodesic oracle: the mesh is not a triangle mesh");
+    }
+    // adjacency and undirected edge indices
+    int ne = 0;
+    for(std::size_t s = 0; s < 3 * nf; ++s)
+    {
+      if(!valid_face[s / 3]) continue;
+      halfedge_descriptor hh = slot_halfedge[s];
+      halfedge_descriptor ho = opposite(hh, tm);
+      if(!is_border(ho, tm)) fadj[s] = hslot[get(him, ho)];
+      if(fadj[s] >= 0 && fedge[fadj[s]] >= 0)
+        fedge[s] = fedge[fadj[s]];
+      else
+        fedge[s] = ne++;
+    }
+    num_edges = ne;
+    elen.assign(ne, 0.);
+    for(std::size_t s = 0; s < 3 * nf; ++s)
+    {
+      if(!valid_face[s / 3]) continue;
+      const int a = fv[s], b = fv[3 * (s / 3) + (s % 3 + 1) % 3];
+      elen[fedge[s]] = dist3(a, b);
+    }
+    // per-slot apex layouts and per-face frames
+    apex.assign(3 * nf, Vec2{0., 0.});
+    flayout.assign(3 * nf, 0.);
+    for(std::size_t f = 0; f < nf; ++f)
+    {
+      if(!valid_face[f]) continue;
+      for(int k = 0; k < 3; ++k)
+      {
+        const double L = elen[fedge[3 * f + k]];
+        const double la = elen[fedge[3 * f + (k + 2) % 3]];
+        const double lb = elen[fedge[3 * f + (k + 1) % 3]];
+        apex[3 * f + k] = (L > 0.) ? layout_apex(L, la, lb) : Vec2{0., 0.};
+      }
+      flayout[3 * f + 0] = elen[fedge[3 * f]];
+      flayout[3 * f + 1] = apex[3 * f].x;
+      flayout[3 * f + 2] = apex[3 * f].y;
+    }
+    // vertex -> incident (face, corner) lists, angle sums, border flags
+    vf_start.assign(nv + 1, 0);
+    for(std::size_t s = 0; s < 3 * nf; ++s)
+      if(valid_face[s / 3]) ++vf_start[fv[s] + 1];
+    for(std::size_t i = 0; i < nv; ++i) vf_start[i + 1] += vf_start[i];
+    vf_list.assign(vf_start[nv], 0);
+    {
+      std::vector<int> fill(vf_start.begin(), vf_start.end() - 1);
+      for(std::size_t s = 0; s < 3 * nf; ++s)
+        if(valid_face[s / 3]) vf_list[fill[fv[s]]++] = int(s);
+    }
+    pseudo.assign(nv, 0);
+    std::vector<double> angle_sum(nv, 0.);
+    for(std::size_t s = 0; s < 3 * nf; ++s)
+    {
+      if(!valid_face[s / 3]) continue;
+      // angle at corner k: between edges k and k+2
+      const std::size_t f = s / 3;
+      const int k = int(s % 3);
+      const double a = elen[fedge[3 * f + k]], b = elen[fedge[3 * f + (k + 2) % 3]];
+      const double c = elen[fedge[3 * f + (k + 1) % 3]];
+      double ang = kPi;
+      if(a > 0. && b > 0.) ang = std::atan2(4. * stable_area(a, b, c), (a * a + b * b - c * c));
+      angle_sum[fv[s]] += ang;
+      if(fadj[s] < 0)
+      {
+        pseudo[fv[s]] = 1;
+        pseudo[fv[3 * f + (k + 1) % 3]] = 1;
+      }
+    }
+    for(std::size_t i = 0; i < nv; ++i)
+      if(angle_sum[i] > 2. * kPi - 1e-9) pseudo[i] = 1;  // saddle, or flat up to rounding (see below)
+  }
+
+  double dist3(int a, int b) const
+  {
+    const double dx = pos[a][0] - pos[b][0], dy = pos[a][1] - pos[b][1], dz = pos[a][2] - pos[b][2];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  }
+  std::size_t number_of_vertices() const { return vertex_of.size(); }
+  std::size_t number_of_faces() const { return face_of.size(); }
+  double edge_length(int slot) const { return elen[fedge[slot]]; }
+  static int next_slot(int s) { return 3 * (s / 3) + (s % 3 + 1) % 3; }
+  static int prev_slot(int s) { return 3 * (s / 3) + (s % 3 + 2) % 3; }
+
+  /// corner `i` of face `f` in the face frame
+  Vec2 corner_2(int f, int i) const
+  {
+    if(i == 0) return {0., 0.};
+    if(i == 1) return {flayout[3 * f], 0.};
+    return {flayout[3 * f + 1], flayout[3 * f + 2]};
+  }
+  /// face frame -> frame of edge k (origin at corner k, x towards corner k+1, y >= 0 inside the face)
+  Vec2 to_edge_frame(int f, int k, Vec2 p) const
+  {
+    const Vec2 a = corner_2(f, k), b = corner_2(f, (k + 1) % 3);
+    const Vec2 d = b - a;
+    const double l = norm(d);
+    const Vec2 u = (l > 0.) ? Vec2{d.x / l, d.y / l} : Vec2{1., 0.};
+    const Vec2 q = p - a;
+    return {dot(q, u), cross(u, q)};
+  }
+  Vec2 from_edge_frame(int f, int k, Vec2 p) const
+  {
+    const Vec2 a = corner_2(f, k), b = corner_2(f, (k + 1) % 3);
+    const Vec2 d = b - a;
+    const double l = norm(d);
+    const Vec2 u = (l > 0.) ? Vec2{d.x / l, d.y / l} : Vec2{1., 0.};
+    return {a.x + p.x * u.x - p.y * u.y, a.y + p.x * u.y + p.y * u.x};
+  }
+  Vec2 bary_to_2(int f, const std::array<double, 3>& b) const
+  {
+    const Vec2 p1 = corner_2(f, 1), p2 = corner_2(f, 2);
+    return {b[1] * p1.x + b[2] * p2.x, b[2] * p2.y};
+  }
+  std::array<double, 3> point_3(int f, const std::array<double, 3>& b) const
+  {
+    std::array<double, 3> r{{0., 0., 0.}};
+    for(int i = 0; i < 3; ++i)
+      for(int c = 0; c < 3; ++c) r[c] += b[i] * pos[fv[3 * f + i]][c];
+    return r;
+  }
+
+  VIM vim;
+  FIM fim;
+  HIM him;
+  std::vector<vertex_descriptor> vertex_of;
+  std::vector<face_descriptor> face_of;
+  std::vector<char> valid_face;
+  std::vector<std::array<double, 3> > pos;
+  std::vector<int> fv;     // 3f+k -> vertex of corner k
+  std::vector<int> fadj;   // 3f+k -> slot of the twin edge in the neighbor face (-1 on border)
+  std::vector<int> fedge;  // 3f+k -> undirected edge index
+  std::vector<halfedge_descriptor> slot_halfedge;
+  std::vector<double> elen;   // per undirected edge
+  std::vector<Vec2> apex;     // 3f+k -> corner k+2 in the frame of edge k
+  std::vector<double> flayout;  // 3f + {0,1,2} -> |v0v1|, x2, y2
+  std::vector<int> vf_start, vf_list;  // vertex -> slots 3f+corner
+  std::vector<char> pseudo;  // saddle or border vertex
+  int num_edges = 0;
+  double diag = 1.;
+};
+
+/// Snaps a barycentric triple: negative or tiny values are set to zero and the
+/// triple is renormalised.  Returns the number of non-zero coordinates.
+inline int snap_barycentric(std::array<double, 3>& b)
+{
+  for(double& x : b)
+    if(!(x > 1e-15)) x = 0.;
+  const double s = b[0] + b[1] + b[2];
+  if(!(s > 0.)) b = {{1., 0., 0.}};
+  else
+    for(double& x : b) x /= s;
+  return int(b[0] > 0.) + int(b[1] > 0.) + int(b[2] > 0.);
+}
+
+/// Distance function of a window along its edge: D(x) = sigma + sqrt((x-sx)^2 + sy^2).
+struct Edge_distance_function
+{
+  double sx, sy2, sigma;
+  double operator()(double x) const { return sigma + std::sqrt((x - sx) * (x - sx) + sy2); }
+};
+
+/// Roots in the open interval (lo, hi) of D1(x) = D2(x), candidate values
+/// from the squared equation (spurious roots are harmless: callers classify
+/// the sub-intervals by evaluation).  Returns the number of roots written.
+inline int equal_distance_points(const Edge_distance_function& f1, const Edge_distance_function& f2,
+                                 double lo, double hi, double* roots)
+{
+  // shift the origin for conditioning
+  const double a = f1.sx - lo, b = f2.sx - lo, A = f1.sy2, B = f2.sy2;
+  const double alpha = f2.sigma - f1.sigma;
+  // m x + c = 2 alpha sqrt((x-b)^2 + B)
+  const double m = 2. * (b - a);
+  const double c = a * a + A - b * b - B - alpha * alpha;
+  const double qa = m * m - 4. * alpha * alpha;
+  const double qb = 2. * m * c + 8. * alpha * alpha * b;
+  const double qc = c * c - 4. * alpha * alpha * (b * b + B);
+  double r[2];
+  int n = 0;
+  const double scale = (std::max)({std::abs(qb), std::abs(qc), 1e-300});
+  if(std::abs(qa) <= 1e-14 * scale)
+  {
+    if(qb != 0.) r[n++] = -qc / qb;
+  }
+  else
+  {
+    double disc = qb * qb - 4. * qa * qc;
+    if(disc < 0.) disc = (disc > -1e-12 * qb * qb) ? 0. : -1.;
+    if(disc >= 0.)
+    {
+      const double sq = std::sqrt(disc);
+      const double q = -0.5 * (qb + (qb >= 0. ? sq : -sq));
+      r[n++] = q / qa;
+      if(q != 0.) r[n++] = qc / q;
+    }
+  }
+  int out = 0;
+  const double w = hi - lo;
+  for(int i = 0; i < n; ++i)
+    if(r[i] > 0. && r[i] < w && std::isfinite(r[i])) roots[out++] = r[i] + lo;
+  if(out == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+  return out;
+}
+
+/// Small sorted set of disjoint closed intervals.
+struct Interval_set
+{
+  std::vector<std::pair<double, double> > v;
+  void subtract(double a, double b)
+  {
+    if(!(b > a)) return;
+    std::size_t n = v.size();
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      std::pair<double, double>& I = v[i];
+      if(I.second <= a || I.first >= b) continue;
+      if(I.first < a && I.second > b)
+      {
+        const double e = I.second;
+        I.second = a;
+        v.push_back({b, e});
+      }
+      else if(I.first < a)
+        I.second = a;
+      else if(I.second > b)
+        I.first = b;
+      else
+        I.second = I.first;  // emptied
+    }
+    v.erase(std::remove_if(v.begin(), v.end(), [](const std::pair<double, double>& I) { return !(I.second > I.first); }),
+            v.end());
+  }
+};
+
+}  // namespace internal
+
+// ---------------------------------------------------------------------------
+// The exact oracle
+// ---------------------------------------------------------------------------
+
+template <class TriangleMesh,
+          class VertexPointMap = typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type,
+          class GeomTraits = typename CGAL::Kernel_traits<
+              typename boost::property_traits<VertexPointMap>::value_type>::Kernel>
+class Exact_geodesic_oracle
+{
+public:
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef GeomTraits Geom_traits;
+  typedef typename GeomTraits::Point_3 Point_3;
+  typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  typedef Poisson_remesh::Iso_arc<face_descriptor, Point_3> Iso_arc;
+  typedef Poisson_remesh::Iso_curve<face_descriptor, Point_3> Iso_curve;
+
+  /// Geometry of a window handed to stop predicates (Section 5.2 of the paper).
+  /// Everything is expressed in the frame of `halfedge`: origin at
+  /// `source(halfedge)`, x axis along the halfedge, y axis pointing into
+  /// `face(halfedge)`, which is the face the window is about to enter.
+  struct Window_geometry
+  {
+    halfedge_descriptor halfedge;
+    std::array<double, 2> source;  ///< unfolded (pseudo-)source, y <= 0
+    double sigma;                  ///< distance from the source to the pseudo-source
+    double b0, b1;                 ///< window extent along the halfedge, 0 <= b0 <= b1 <= length
+    Point_3 p0, p1;                ///< 3D endpoints of the window
+    double min_distance, max_distance;
+  };
+
+private:
+  typedef internal::Indexed_triangle_mesh<TriangleMesh, VertexPointMap> Mesh;
+  typedef internal::Vec2 Vec2;
+
+  struct Window
+  {
+    double b0, b1;  // extent on the edge, in the frame of `slot`
+    double sx, sy;  // unfolded source in the frame of `slot`, sy <= 0
+    double sigma;
+    double key;     // key used in the queue
+    int slot;       // 3*face + k: the window lies on edge k of `face` and propagates into `face`
+    bool alive, propagated;
+  };
+  struct Queue_entry
+  {
+    double key;
+    int id;  // >= 0: window, < 0: pseudo-source event of vertex -(id+1)
+    bool operator<(const Queue_entry& o) const { return key > o.key; }  // min-heap
+  };
+
+public:
+  /// Precomputes edge lengths, face layouts and saddle / border vertices.  O(|V| + |F|).
+  explicit Exact_geodesic_oracle(const TriangleMesh& tm) : Exact_geodesic_oracle(tm, get(CGAL::vertex_point, tm)) {}
+
+  Exact_geodesic_oracle(const TriangleMesh& tm, VertexPointMap vpm) : m_tm(tm), m_vpm(vpm), m(tm, vpm)
+  {
+    m_dist.assign(m.number_of_vertices(), internal::kInf);
+    m_pseudo_done.assign(m.number_of_vertices(), internal::kInf);
+    m_edge_windows.resize(m.num_edges);
+    m_edge_touched.assign(m.num_edges, 0);
+    m_tol = 1e-13 * m.diag;
+  }
+
+  const TriangleMesh& mesh() const { return m_tm; }
+  /// diagonal of the bounding box of the mesh
+  double bbox_diagonal() const { return m.diag; }
+  /// radius of the last propagation (the `report_radius` of predicate-driven propagations)
+  double radius() const { return m_radius; }
+
+  // -------------------------------------------------------------------------
+  // Propagation
+  // -------------------------------------------------------------------------
+
+  /// Exact propagation from `source`, truncated at `radius` (Section 4.2.2):
+  /// windows whose minimal distance exceeds `radius` are not propagated.
+  /// Afterwards every vertex / surface point at distance <= radius is reached.
+  void propagate(const Face_location& source, double radius)
+  {
+    propagate_impl(source, [radius](const Window_geometry& w) { return w.min_distance > radius; }, radius);
+  }
+
+  /// Exact propagation stopped by a predicate (Section 5.2): `stop(w)` is called
+  /// for every new window `w` (a `Window_geometry`) and returns true when the
+  /// window must not be propagated further.  Distances returned afterwards are
+  /// exact for points whose shortest path only crosses propagated windows;
+  /// distances larger than `report_radius` are reported as unreached.
+  template <class StopPredicate>
+  void propagate(const Face_location& source, StopPredicate stop,
+                 double report_radius = std::numeric_limits<double>::infinity())
+  {
+    propagate_impl(source, stop, report_radius);
+  }
+
+  // -------------------------------------------------------------------------
+  // Queries
+  // -------------------------------------------------------------------------
+
+  /// Exact geodesic distance of vertex `v`, or nullopt if not reached within the radius.  O(1).
+  std::optional<double> distance(vertex_descriptor v) const
+  {
+    const double d = m_dist[get(m.vim, v)];
+    if(d <= m_radius) return d;
+    return std::nullopt;
+  }
+
+  /// Exact geodesic distance of a surface point, or nullopt if farther than the radius.
+  /// O(number of windows on the edges of the face).
+  std::optional<double> distance(const Face_location& p) const
+  {
+    const int f = int(get(m.fim, p.first));
+    std::array<double, 3> b = p.second;
+    internal::snap_barycentric(b);
+    const double d = point_distance(f, m.bary_to_2(f, b));
+    // points of the iso-curve at the radius itself must be reported despite rounding
+    if(d <= m_radius * (1. + 1e-9) + m_tol) return d;
+    return std::nullopt;
+  }
+
+  /// Outputs `std::pair<vertex_descriptor, double>` for every vertex at distance
+  /// <= radius (in no particular order).  O(number of reached vertices).
+  template <class OutputIterator>
+  OutputIterator reached_vertices(OutputIterator out) const
+  {
+    for(int v : m_touched_vertices)
+      if(m_dist[v] <= m_radius) *out++ = std::make_pair(m.vertex_of[v], m_dist[v]);
+    return out;
+  }
+
+  /// The iso-distance curve at distance `R` (`R` <= the propagation radius),
+  /// as ordered chains of trimmed circular arcs (Section 4.2.2, Fig. 3a).
+  /// O(A log A) where A is the number of arcs.
+  std::vector<Iso_curve> iso_curve(double R) const
+  {
+    std::vector<Iso_arc> arcs;
+    extract_iso_arcs(R, arcs);
+    return chain_iso_arcs(arcs);
+  }
+
+  /// number of windows created by the last propagation (statistics)
+  std::size_t number_of_windows() const { return m_windows.size(); }
+
+private:
+  // -------------------------------------------------------------------------
+  // Propagation steps
+  // -------------------------------------------------------------------------
+
+  template <class Stop>
+  void propagate_impl(const Face_location& source, Stop stop, double report_radius)
+  {
+    reset();
+    m_radius = report_radius;
+    initialize_windows_from_source(source, stop);
+    while(!m_queue.empty())
+    {
+      std::pop_heap(m_queue.begin(), m_queue.end());
+      const Queue_entry e = m_queue.back();
+      m_queue.pop_back();
+      if(e.id < 0)
+      {
+        const int v = -(e.id + 1);
+        if(e.key > m_dist[v] + m_tol) continue;  // stale event
+        if(m_pseudo_done[v] <= m_dist[v] + m_tol) continue;
+        if(m_dist[v] > m_radius) continue;
+        create_pseudo_source(v, m_dist[v], stop);
+        continue;
+      }
+      Window& w = m_windows[e.id];
+      if(!w.alive || w.propagated) continue;
+      const double k = window_min_distance(w);
+      if(k > e.key + m_tol)
+      {  // the window was trimmed since it was queued: requeue with its new key
+        w.key = k;
+        push(k, e.id);
+        continue;
+      }
+      w.propagated = true;
+      propagate_window_across_face(e.id, stop);
+    }
+  }
+
+  void reset()
+  {
+    for(int v : m_touched_vertices)
+    {
+      m_dist[v] = internal::kInf;
+      m_pseudo_done[v] = internal::kInf;
+    }
+    m_touched_vertices.clear();
+    for(int e : m_touched_edges)
+    {
+      m_edge_windows[e].clear();
+      m_edge_touched[e] = 0;
+    }
+    m_touched_edges.clear();
+    m_windows.clear();
+    m_queue.clear();
+    m_source_faces.clear();
+  }
+
+  void push(double key, int id)
+  {
+    m_queue.push_back({key, id});
+    std::push_heap(m_queue.begin(), m_queue.end());
+  }
+
+  void update_vertex(int v, double d)
+  {
+    if(!(d < m_dist[v])) return;
+    if(m_dist[v] == internal::kInf) m_touched_vertices.push_back(v);
+    m_dist[v] = d;
+    if(m.pseudo[v] && d <= m_radius) push(d, -(v + 1));
+  }
+
+  static double window_min_distance(const Window& w)
+  {
+    const double x = (std::min)((std::max)(w.sx, w.b0), w.b1);
+    return w.sigma + std::hypot(x - w.sx, w.sy);
+  }
+  static double window_max_distance(const Window& w)
+  {
+    return w.sigma + (std::max)(std::hypot(w.b0 - w.sx, w.sy), std::hypot(w.b1 - w.sx, w.sy));
+  }
+
+  /// Windows created by the source: vertex source = pseudo-source of distance 0;
+  /// edge / face source = windows on the edges of the face(s) containing it.
+  template <class Stop>
+  void initialize_windows_from_source(const Face_location& source, Stop& stop)
+  {
+    const int f = int(get(m.fim, source.first));
+    std::array<double, 3> b = source.second;
+    const int nz = internal::snap_barycentric(b);
+    if(nz == 1)
+    {
+      const int i = (b[0] > 0.) ? 0 : (b[1] > 0.) ? 1 : 2;
+      const int v = m.fv[3 * f + i];
+      update_vertex(v, 0.);
+      m_pseudo_done[v] = 0.;
+      create_pseudo_source(v, 0., stop);
+      return;
+    }
+    const Vec2 q = m.bary_to_2(f, b);
+    m_source_faces.push_back({f, q});
+    if(nz == 2)
+    {
+      // on edge k where b[k+2] == 0: also the face across that edge
+      const int k = (b[2] == 0.) ? 0 : (b[0] == 0.) ? 1 : 2;
+      const int so = m.fadj[3 * f + k];
+      if(so >= 0)
+      {
+        const int g = so / 3, ko = so % 3;
+        const double L = m.edge_length(3 * f + k);
+        const Vec2 qe = m.to_edge_frame(f, k, q);
+        const Vec2 qg = m.from_edge_frame(g, ko, Vec2{L - qe.x, 0.});
+        m_source_faces.push_back({g, qg});
+      }
+    }
+    for(const auto& sf : m_source_faces)
+    {
+      const int g = sf.first;
+      for(int i = 0; i < 3; ++i) update_vertex(m.fv[3 * g + i], internal::norm(sf.second - m.corner_2(g, i)));
+    }
+    const std::size_t nsf = m_source_faces.size();
+    for(std::size_t i = 0; i < nsf; ++i)
+    {
+      const int g = m_source_faces[i].first;
+      const Vec2 q2 = m_source_faces[i].second;
+      for(int k = 0; k < 3; ++k)
+      {
+        const Vec2 qe = m.to_edge_frame(g, k, q2);
+        if(nz == 2 && !(qe.y > 1e-14 * m.edge_length(3 * g + k))) continue;  // the source edge itself
+        emit_window_through_edge(3 * g + k, qe, 0., stop);
+      }
+    }
+  }
+
+  /// A point `s` (frame of slot `s_slot`, y >= 0: inside the face) emits a
+  /// full-edge window into the face across that edge.
+  template <class Stop>
+  void emit_window_through_edge(int s_slot, Vec2 s, double sigma, Stop& stop)
+  {
+    const int t = m.fadj[s_slot];
+    if(t < 0) return;  // border edge: nothing beyond
+    const double L = m.edge_length(s_slot);
+    Window w;
+    w.b0 = 0.;
+    w.b1 = L;
+    w.sx = L - s.x;
+    w.sy = (std::min)(0., -s.y);
+    w.sigma = sigma;
+    w.slot = t;
+    trim_and_insert_window(w, stop);
+  }
+
+  /// Saddle / border vertex `v` reached at distance `d` becomes a pseudo-source:
+  /// full windows on the edges opposite to `v` in all incident faces.
+  template <class Stop>
+  void create_pseudo_source(int v, double d, Stop& stop)
+  {
+    m_pseudo_done[v] = d;
+    for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i)
+    {
+      const int c = m.vf_list[i];  // slot 3f + corner of v
+      const int f = c / 3, j = c % 3;
+      update_vertex(m.fv[3 * f + (j + 1) % 3], d + m.edge_length(c));
+      update_vertex(m.fv[3 * f + (j + 2) % 3], d + m.edge_length(3 * f + (j + 2) % 3));
+      const int k = (j + 1) % 3;  // opposite edge; its apex is v
+      emit_window_through_edge(3 * f + k, m.apex[3 * f + k], d, stop);
+    }
+  }
+
+  /// Window propagation (Surazhsky et al. Section 3.2): the window on edge AB of
+  /// face f = (A,B,C) is propagated through f onto AC and CB.
+  template <class Stop>
+  void propagate_window_across_face(int id, Stop& stop)
+  {
+    const Window w = m_windows[id];
+    const int s = w.slot, f = s / 3, k = s % 3;
+    const double L = m.edge_length(s);
+    const Vec2 C = m.apex[s];
+    const Vec2 S{w.sx, w.sy};
+    const int vC = m.fv[3 * f + (k + 2) % 3];
+    // abscissa where the ray from S to C crosses AB
+    const double den = C.y - S.y;
+    const double xC = (den > 0.) ? S.x + (C.x - S.x) * (-S.y) / den : S.x;
+    const double tolx = 1e-12 * L;
+    if(xC >= w.b0 - tolx && xC <= w.b1 + tolx) update_vertex(vC, w.sigma + internal::norm(C - S));
+
+    const double lAC = m.edge_length(3 * f + (k + 2) % 3);
+    const double lBC = m.edge_length(3 * f + (k + 1) % 3);
+    // left part: rays through [b0, min(b1,xC)] hit AC; new window on the twin of C->A (frame origin A, x along A->C)
+    if(w.b0 < xC && lAC > 0.)
+    {
+      const double x1 = (std::min)(w.b1, xC);
+      const Vec2 A{0., 0.};
+      double u0 = ray_hit(S, w.b0, A, C), u1 = ray_hit(S, x1, A, C);
+      if(u0 > u1) std::swap(u0, u1);
+      const Vec2 dir{C.x / lAC, C.y / lAC};
+      const Vec2 sn{internal::dot(S, dir), internal::cross(dir, S)};
+      make_child(3 * f + (k + 2) % 3, u0 * lAC, u1 * lAC, sn, w.sigma, stop);
+    }
+    // right part: rays through [max(b0,xC), b1] hit BC; new window on the twin of B->C (origin C, x along C->B)
+    if(w.b1 > xC && lBC > 0.)
+    {
+      const double x0 = (std::max)(w.b0, xC);
+      const Vec2 B{L, 0.};
+      double v0 = ray_hit(S, x0, C, B), v1 = ray_hit(S, w.b1, C, B);
+      if(v0 > v1) std::swap(v0, v1);
+      const Vec2 dir{(B.x - C.x) / lBC, (B.y - C.y) / lBC};
+      const Vec2 sc = S - C;
+      const Vec2 sn{internal::dot(sc, dir), internal::cross(dir, sc)};
+      make_child(3 * f + (k + 1) % 3, v0 * lBC, v1 * lBC, sn, w.sigma, stop);
+    }
+  }
+
+  /// Parameter in [0,1] along Q0->Q1 where the ray from S through (x,0) hits line Q0Q1.
+  static double ray_hit(Vec2 S, double x, Vec2 Q0, Vec2 Q1)
+  {
+    const Vec2 r{x - S.x, -S.y};
+    const Vec2 d = Q1 - Q0;
+    const double den = internal::cross(d, r);
+    if(den == 0.) return 0.;
+    const double u = internal::cross(S - Q0, r) / den;
+    return (std::min)(1., (std::max)(0., u));
+  }
+
+  /// Child window on edge slot `from_slot` of the current face, passed to the
+  /// face across it.  `sn` is the source in the frame of the twin edge
+  /// (already mirrored: y <= 0), [a,b] the extent in that frame.
+  template <class Stop>
+  void make_child(int from_slot, double a, double b, Vec2 sn, double sigma, Stop& stop)
+  {
+    const int t = m.fadj[from_slot];
+    const double L = m.edge_length(from_slot);
+    if(!(b - a > 0.)) return;  // zero-width windows carry nothing (vertices are updated directly)
+    if(t < 0) return;  // border: endpoint distances were already recorded through the face
+    Window w;
+    w.b0 = (std::max)(0., a);
+    w.b1 = (std::min)(L, b);
+    w.sx = sn.x;
+    w.sy = (std::min)(0., sn.y);
+    w.sigma = sigma;
+    w.slot = t;
+    trim_and_insert_window(w, stop);
+  }
+
+  /// Surazhsky's window trimming: keep, on every point of the edge, only the
+  /// window(s) realising the smallest distance.  The new window is also
+  /// compared with the four vertices of the two faces sharing the edge (a
+  /// vertex v gives the upper bound d(v) + |v x|).  Pieces of the new window
+  /// that survive are stored and queued unless `stop` says otherwise.
+  template <class Stop>
+  void trim_and_insert_window(const Window& w, Stop& stop)
+  {
+    const int s = w.slot, f = s / 3, k = s % 3;
+    const double L = m.edge_length(s);
+    const double tol_x = 1e-12 * L;
+    const internal::Edge_distance_function Dw{w.sx, w.sy * w.sy, w.sigma};
+    // endpoint distances (a window covering a vertex gives it an upper bound)
+    if(w.b0 <= tol_x) update_vertex(m.fv[s], Dw(0.));
+    if(w.b1 >= L - tol_x) update_vertex(m.fv[3 * f + (k + 1) % 3], Dw(L));
+
+    m_pieces.v.clear();
+    m_pieces.v.push_back({w.b0, w.b1});
+    trim_by_vertex_distances(w, Dw, m_pieces);
+    if(m_pieces.v.empty()) return;
+    trim_against_edge_windows(w, Dw, m_pieces);
+    store_window_pieces(w, m_pieces, stop);
+  }
+
+  /// Removes the parts of the window where one of the vertices of the two
+  /// faces adjacent to its edge already gives a shorter distance.
+  void trim_by_vertex_distances(const Window& w, const internal::Edge_distance_function& Dw,
+                                internal::Interval_set& pieces) const
+  {
+    const int s = w.slot, f = s / 3, k = s % 3;
+    const double L = m.edge_length(s);
+    const int vA = m.fv[s], vB = m.fv[3 * f + (k + 1) % 3], vC = m.fv[3 * f + (k + 2) % 3];
+    const Vec2 C = m.apex[s];
+    subtract_dominated(Dw, internal::Edge_distance_function{0., 0., m_dist[vA]}, w.b0, w.b1, pieces);
+    subtract_dominated(Dw, internal::Edge_distance_function{L, 0., m_dist[vB]}, w.b0, w.b1, pieces);
+    subtract_dominated(Dw, internal::Edge_distance_function{C.x, C.y * C.y, m_dist[vC]}, w.b0, w.b1, pieces);
+    const int t = m.fadj[s];
+    if(t >= 0)
+    {
+      const int vD = m.fv[3 * (t / 3) + (t % 3 + 2) % 3];
+      const Vec2 D = m.apex[t];
+      subtract_dominated(Dw, internal::Edge_distance_function{L - D.x, D.y * D.y, m_dist[vD]}, w.b0, w.b1, pieces);
+    }
+  }
+
+  /// Compares the new window with every window already stored on its edge
+  /// (from either side).  On each overlap, the points where both distance
+  /// functions are equal split the overlap; each part goes to the window with
+  /// the smaller distance (ties go to the existing window).  Existing windows
+  /// are shrunk, split or deleted accordingly; `pieces` keeps what remains of
+  /// the new window.
+  void trim_against_edge_windows(const Window& w, const internal::Edge_distance_function& Dw,
+                                 internal::Interval_set& pieces)
+  {
+    const int s = w.slot;
+    const double L = m.edge_length(s);
+    const double tol_x = 1e-12 * L;
+    const int e = m.fedge[s];
+    std::vector<int>& list = m_edge_windows[e];
+    m_new_list.clear();
+    for(std::size_t i = 0; i < list.size(); ++i)
+    {
+      const int eid = list[i];
+      Window E = m_windows[eid];  // copy, expressed in the frame of `s`
+      if(E.slot != s)
+      {
+        const double a = L - E.b1, b = L - E.b0;
+        E.b0 = a;
+        E.b1 = b;
+        E.sx = L - E.sx;
+      }
+      const double o0 = (std::max)(E.b0, w.b0), o1 = (std::min)(E.b1, w.b1);
+      if(!(o1 > o0) || pieces.v.empty())
+      {
+        m_new_list.push_back(eid);
+        continue;
+      }
+      const internal::Edge_distance_function De{E.sx, E.sy * E.sy, E.sigma};
+      double pts[4];
+      pts[0] = o0;
+      int np = 1 + internal::equal_distance_points(Dw, De, o0, o1, pts + 1);
+      pts[np++] = o1;
+      m_e_pieces.v.clear();
+      m_e_pieces.v.push_back({E.b0, E.b1});
+      for(int j = 0; j + 1 < np; ++j)
+      {
+        const double a = pts[j], b = pts[j + 1];
+        if(!(b > a)) continue;
+        const double x = 0.5 * (a + b);
+        if(Dw(x) < De(x) - m_tol)
+          m_e_pieces.subtract(a, b);
+        else
+          pieces.subtract(a, b);
+      }
+      // write back the surviving pieces of E (converted back to its own frame)
+      bool first = true;
+      for(const auto& I : m_e_pieces.v)
+      {
+        if(!(I.second - I.first > 0.)) continue;
+        const double a = (E.slot != s) ? L - I.second : I.first;
+        const double b = (E.slot != s) ? L - I.first : I.second;
+        if(first)
+        {
+          m_windows[eid].b0 = a;
+          m_windows[eid].b1 = b;
+          m_new_list.push_back(eid);
+          first = false;
+          continue;
+        }
+        Window W2 = m_windows[eid];  // E was split: new window for this piece
+        W2.b0 = a;
+        W2.b1 = b;
+        W2.key = window_min_distance(W2);
+        const int nid = int(m_windows.size());
+        m_windows.push_back(W2);
+        m_new_list.push_back(nid);
+        if(!W2.propagated) push(W2.key, nid);
+      }
+      if(first) m_windows[eid].alive = false;
+    }
+    list.swap(m_new_list);
+  }
+
+  /// Stores the surviving pieces of a new window on its edge and queues them
+  /// unless the stop predicate rejects them.
+  template <class Stop>
+  void store_window_pieces(const Window& w, const internal::Interval_set& pieces, Stop& stop)
+  {
+    const int s = w.slot;
+    const int e = m.fedge[s];
+    if(!m_edge_touched[e])
+    {
+      m_edge_touched[e] = 1;
+      m_touched_edges.push_back(e);
+    }
+    for(const auto& I : pieces.v)
+    {
+      if(!(I.second - I.first > 0.)) continue;
+      Window W2 = w;
+      W2.b0 = I.first;
+      W2.b1 = I.second;
+      W2.alive = true;
+      W2.propagated = false;
+      W2.key = window_min_distance(W2);
+      const int nid = int(m_windows.size());
+      m_windows.push_back(W2);
+      m_edge_windows[e].push_back(nid);
+      if(stop(window_geometry(W2)))
+        m_windows[nid].propagated = true;  // stored (for queries and trimming) but not propagated
+      else
+        push(W2.key, nid);
+    }
+  }
+
+  /// Removes from `pieces` the parts of [lo,hi] where `competitor` is strictly smaller than `Dw`.
+  void subtract_dominated(const internal::Edge_distance_function& Dw, const internal::Edge_distance_function& competitor,
+                          double lo, double hi, internal::Interval_set& pieces) const
+  {
+    if(competitor.sigma == internal::kInf || pieces.v.empty()) return;
+    double pts[4];
+    pts[0] = lo;
+    int np = 1 + internal::equal_distance_points(Dw, competitor, lo, hi, pts + 1);
+    pts[np++] = hi;
+    for(int j = 0; j + 1 < np; ++j)
+    {
+      const double a = pts[j], b = pts[j + 1];
+      if(!(b > a)) continue;
+      const double x = 0.5 * (a + b);
+      if(competitor(x) < Dw(x) - m_tol) pieces.subtract(a, b);
+    }
+  }
+
+  Window_geometry window_geometry(const Window& w) const
+  {
+    Window_geometry g;
+    g.halfedge = m.slot_halfedge[w.slot];
+    g.source = {{w.sx, w.sy}};
+    g.sigma = w.sigma;
+    g.b0 = w.b0;
+    g.b1 = w.b1;
+    const double L = m.edge_length(w.slot);
+    const int a = m.fv[w.slot], b = m.fv[Mesh::next_slot(w.slot)];
+    const double t0 = (L > 0.) ? w.b0 / L : 0., t1 = (L > 0.) ? w.b1 / L : 0.;
+    const auto& pa = m.pos[a];
+    const auto& pb = m.pos[b];
+    g.p0 = Point_3(pa[0] + t0 * (pb[0] - pa[0]), pa[1] + t0 * (pb[1] - pa[1]), pa[2] + t0 * (pb[2] - pa[2]));
+    g.p1 = Point_3(pa[0] + t1 * (pb[0] - pa[0]), pa[1] + t1 * (pb[1] - pa[1]), pa[2] + t1 * (pb[2] - pa[2]));
+    g.min_distance = window_min_distance(w);
+    g.max_distance = window_max_distance(w);
+    return g;
+  }
+
+  // -------------------------------------------------------------------------
+  // Distance inside a face
+  // -------------------------------------------------------------------------
+
+  /// Distance through window `w` (into face f through its edge k) of the point
+  /// `pk` given in the frame of edge k, or +infinity if `pk` is not visible
+  /// from the unfolded source through the window.
+  double window_value(const Window& w, Vec2 pk, double L) const
+  {
+    const double dy = pk.y - w.sy;
+    const double x = (dy > 1e-300) ? w.sx + (pk.x - w.sx) * (-w.sy) / dy : pk.x;
+    const double tol = 1e-10 * L;
+    if(x < w.b0 - tol || x > w.b1 + tol) return internal::kInf;
+    return w.sigma + std::hypot(pk.x - w.sx, pk.y - w.sy);
+  }
+
+  /// Minimum over the windows entering face f, its vertices (as pseudo-sources)
+  /// and the source itself when it lies in f.
+  double point_distance(int f, Vec2 q) const
+  {
+    double best = internal::kInf;
+    for(int k = 0; k < 3; ++k)
+    {
+      const int s = 3 * f + k;
+      const std::vector<int>& list = m_edge_windows[m.fedge[s]];
+      if(list.empty()) continue;
+      const Vec2 qk = m.to_edge_frame(f, k, q);
+      const double L = m.edge_length(s);
+      for(int id : list)
+      {
+        const Window& w = m_windows[id];
+        if(w.slot == s) best = (std::min)(best, window_value(w, qk, L));
+      }
+    }
+    for(int i = 0; i < 3; ++i)
+    {
+      const double dv = m_dist[m.fv[3 * f + i]];
+      if(dv < internal::kInf) best = (std::min)(best, dv + internal::norm(q - m.corner_2(f, i)));
+    }
+    for(const auto& sf : m_source_faces)
+      if(sf.first == f) best = (std::min)(best, internal::norm(q - sf.second));
+    return best;
+  }
+
+  // -------------------------------------------------------------------------
+  // Iso-distance curve extraction (Section 4.2.2, Figure 3a)
+  // -------------------------------------------------------------------------
+
+  /// A distance field generator inside a face: D(p) = sigma + |p - c| for p
+  /// in the visibility wedge of a window (or everywhere for a vertex / source).
+  struct Generator
+  {
+    Vec2 c;        // center (unfolded source) in the face frame
+    double sigma;  // distance of the center
+    const Window* window;  // nullptr: no wedge restriction (vertex or source)
+    Vec2 eo, eu;   // frame of the window's edge: origin and unit direction
+    double L;      // length of that edge
+  };
+
+  double generator_value(const Generator& g, Vec2 p) const
+  {
+    if(g.window == nullptr) return g.sigma + internal::norm(p - g.c);
+    const Vec2 q = p - g.eo;
+    return window_value(*g.window, Vec2{internal::dot(q, g.eu), internal::cross(g.eu, q)}, g.L);
+  }
+
+  /// distance from `c` to the triangle P (0 inside)
+  static double distance_to_triangle(const Vec2 P[3], Vec2 c)
+  {
+    bool inside = true;
+    double best = internal::kInf;
+    for(int i = 0; i < 3; ++i)
+    {
+      const Vec2 a = P[i], d = P[(i + 1) % 3] - P[i];
+      if(internal::cross(d, c - a) < 0.) inside = false;
+      const double dd = internal::dot(d, d);
+      double t = (dd > 0.) ? internal::dot(c - a, d) / dd : 0.;
+      t = (std::min)(1., (std::max)(0., t));
+      best = (std::min)(best, internal::norm(c - (a + t * d)));
+    }
+    return inside ? 0. : best;
+  }
+
+  bool inside_face(int f, Vec2 p) const
+  {
+    for(int k = 0; k < 3; ++k)
+      if(m.to_edge_frame(f, k, p).y < -1e-9 * m.edge_length(3 * f + k)) return false;
+    return true;
+  }
+
+  static void circle_line_angles(Vec2 c, double r, Vec2 p, Vec2 q, std::vector<double>& out)
+  {
+    const Vec2 d = q - p;
+    const double dd = internal::dot(d, d);
+    if(!(dd > 0.)) return;
+    const Vec2 pc = p - c;
+    // |pc + t d|^2 = r^2
+    const double b = internal::dot(pc, d) / dd;
+    const double cc = (internal::dot(pc, pc) - r * r) / dd;
+    const double disc = b * b - cc;
+    if(disc < 0.) return;
+    const double sq = std::sqrt(disc);
+    for(double t : {-b - sq, -b + sq})
+    {
+      const Vec2 x = pc + t * d;
+      out.push_back(std::atan2(x.y, x.x));
+    }
+  }
+
+  static void circle_circle_angles(Vec2 c1, double r1, Vec2 c2, double r2, std::vector<double>& out)
+  {
+    const Vec2 d = c2 - c1;
+    const double D = internal::norm(d);
+    if(!(D > 0.) || D > r1 + r2 || D < std::abs(r1 - r2)) return;
+    const double a = (r1 * r1 - r2 * r2 + D * D) / (2. * D);
+    const double h = std::sqrt((std::max)(0., r1 * r1 - a * a));
+    const double base = std::atan2(d.y, d.x);
+    const double phi = std::atan2(h, a);
+    out.push_back(base + phi);
+    out.push_back(base - phi);
+  }
+
+  /// Distance generators of face f whose disk of radius R - sigma meets the face.
+  void collect_generators(int f, double R, std::vector<Generator>& gens) const
+  {
+    gens.clear();
+    const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+    auto add = [&](const Generator& g) {
+      if(distance_to_triangle(P, g.c) < R - g.sigma) gens.push_back(g);
+    };
+    for(int k = 0; k < 3; ++k)
+    {
+      const int s = 3 * f + k;
+      const std::vector<int>& list = m_edge_windows[m.fedge[s]];
+      if(list.empty()) continue;
+      const Vec2 eo = P[k], d = P[(k + 1) % 3] - P[k];
+      const double L = internal::norm(d);
+      const Vec2 eu = (L > 0.) ? Vec2{d.x / L, d.y / L} : Vec2{1., 0.};
+      for(int id : list)
+      {
+        const Window& w = m_windows[id];
+        if(w.slot != s || !(w.sigma < R) || window_min_distance(w) > R) continue;
+        const Vec2 c{eo.x + w.sx * eu.x - w.sy * eu.y, eo.y + w.sx * eu.y + w.sy * eu.x};
+        add(Generator{c, w.sigma, &w, eo, eu, m.edge_length(s)});
+      }
+    }
+    for(const auto& sf : m_source_faces)
+      if(sf.first == f) add(Generator{sf.second, 0., nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
+    for(int i = 0; i < 3; ++i)
+    {
+      const double dv = m_dist[m.fv[3 * f + i]];
+      if(dv < R) add(Generator{P[i], dv, nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
+    }
+  }
+
+  /// For every face near the propagated region, the circle of radius R - sigma
+  /// of every generator is cut at its intersections with the face edges, the
+  /// wedge boundaries and the other generators' circles; a piece is kept when
+  /// its midpoint lies in the face, in the generator's wedge, and no other
+  /// generator gives a distance < R there (artificial arcs are trimmed).
+  void extract_iso_arcs(double R, std::vector<Iso_arc>& arcs) const
+  {
+    // faces to examine: around reached vertices and on both sides of edges
+    // holding windows (sorted list, no O(|F|) storage: iso_curve stays cheap
+    // and thread-safe for small disks)
+    std::vector<int> faces_to_visit;
+    for(int v : m_touched_vertices)
+      for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i) faces_to_visit.push_back(m.vf_list[i] / 3);
+    for(int e : m_touched_edges)
+      for(int id : m_edge_windows[e]) faces_to_visit.push_back(m_windows[id].slot / 3);
+    for(const auto& sf : m_source_faces) faces_to_visit.push_back(sf.first);
+    std::sort(faces_to_visit.begin(), faces_to_visit.end());
+    faces_to_visit.erase(std::unique(faces_to_visit.begin(), faces_to_visit.end()), faces_to_visit.end());
+
+    std::vector<Generator> gens;
+    std::vector<double> angles;
+    std::vector<std::pair<double, double> > kept;
+    const double tie = 1e-11 * (std::max)(R, m.diag * 1e-6);
+    for(int f : faces_to_visit)
+    {
+      // faces entirely closer than R (d(p) <= d(v_i) + |p v_i|) have no arc
+      double dmin = internal::kInf, lmax = 0.;
+      for(int i = 0; i < 3; ++i)
+      {
+        dmin = (std::min)(dmin, m_dist[m.fv[3 * f + i]]);
+        lmax = (std::max)(lmax, m.edge_length(3 * f + i));
+      }
+      if(dmin + lmax < R) continue;
+      collect_generators(f, R, gens);
+      if(gens.empty()) continue;
+      const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+      for(std::size_t gi = 0; gi < gens.size(); ++gi)
+      {
+        const Generator& g = gens[gi];
+        const double r = R - g.sigma;
+        if(!(r > 0.)) continue;
+        // quick rejection: circle misses the triangle or contains it
+        double dmax = 0.;
+        for(int i = 0; i < 3; ++i) dmax = (std::max)(dmax, internal::norm(P[i] - g.c));
+        if(dmax < r) continue;
+        angles.clear();
+        for(int i = 0; i < 3; ++i) circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles);
+        if(angles.empty() && !inside_face(f, g.c + r * Vec2{1., 0.})) continue;
+        for(std::size_t hi = 0; hi < gens.size(); ++hi)
+        {
+          const Generator& h = gens[hi];
+          if(h.window != nullptr)
+          {
+            const Vec2 a = h.eo + h.window->b0 * h.eu, b = h.eo + h.window->b1 * h.eu;
+            circle_line_angles(g.c, r, h.c, a, angles);
+            circle_line_angles(g.c, r, h.c, b, angles);
+          }
+          if(hi != gi) circle_circle_angles(g.c, r, h.c, R - h.sigma, angles);
+        }
+        for(double& a : angles)
+        {
+          a = std::fmod(a, 2. * internal::kPi);
+          if(a < 0.) a += 2. * internal::kPi;
+        }
+        std::sort(angles.begin(), angles.end());
+        if(angles.empty()) angles.push_back(0.);
+        // classify the pieces between consecutive angles (cyclically)
+        kept.clear();
+        const std::size_t na = angles.size();
+        for(std::size_t i = 0; i < na; ++i)
+        {
+          const double a0 = angles[i];
+          const double a1 = (i + 1 < na) ? angles[i + 1] : angles[0] + 2. * internal::kPi;
+          if(!(a1 - a0 > 1e-13)) continue;
+          const double am = 0.5 * (a0 + a1);
+          const Vec2 p = g.c + r * Vec2{std::cos(am), std::sin(am)};
+          if(!inside_face(f, p)) continue;
+          if(!(generator_value(g, p) < internal::kInf)) continue;
+          bool ok = true;
+          for(std::size_t hi = 0; hi < gens.size() && ok; ++hi)
+          {
+            if(hi == gi) continue;
+            const double dh = generator_value(gens[hi], p);
+            if(dh < R - tie || (dh <= R + tie && hi < gi)) ok = false;
+          }
+          if(!ok) continue;
+          if(!kept.empty() && std::abs(kept.back().second - a0) < 1e-15)
+            kept.back().second = a1;
+          else
+            kept.push_back({a0, a1});
+        }
+        // merge the last piece with the first one across the 2 pi seam
+        if(kept.size() >= 2 && std::abs(kept.back().second - (kept.front().first + 2. * internal::kPi)) < 1e-15)
+        {
+          kept.front().first = kept.back().first - 2. * internal::kPi;
+          kept.pop_back();
+        }
+        for(const auto& I : kept)
+        {
+          if(!(r * (I.second - I.first) > 1e-12 * R)) continue;
+          Iso_arc arc;
+          arc.face = m.face_of[f];
+          arc.center = {{g.c.x, g.c.y}};
+          arc.radius = r;
+          arc.sigma = g.sigma;
+          arc.theta_start = I.first;
+          arc.theta_end = I.second;
+          for(int i = 0; i < 3; ++i)
+          {
+            const auto& q = m.pos[m.fv[3 * f + i]];
+            arc.corners[i] = Point_3(q[0], q[1], q[2]);
+          }
+          arc.layout = {{m.flayout[3 * f], m.flayout[3 * f + 1], m.flayout[3 * f + 2]}};
+          arcs.push_back(arc);
+        }
+      }
+    }
+  }
+
+  /// Chains arcs end-to-start (arcs of the same or adjacent faces whose 3D
+  /// endpoints coincide) into closed curves or open border-to-border curves.
+  std::vector<Iso_curve> chain_iso_arcs(const std::vector<Iso_arc>& arcs) const
+  {
+    return chain_arcs_by_endpoints(arcs, [this](face_descriptor fd) { return int(get(m.fim, fd)); }, m);
+  }
+
+public:
+  /// (implementation detail shared with the approximate oracle)
+  template <class FaceIndex>
+  static std::vector<Iso_curve> chain_arcs_by_endpoints(const std::vector<Iso_arc>& arcs, FaceIndex face_index,
+                                                        const Mesh& mesh)
+  {
+    const std::size_t n = arcs.size();
+    std::vector<std::array<double, 3> > st(n), en(n);
+    std::vector<int> fidx(n);
+    std::vector<std::pair<int, int> > by_face;  // (face index, arc), sorted
+    by_face.reserve(n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Point_3 a = arcs[i].point(0.), b = arcs[i].point(1.);
+      st[i] = {{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())}};
+      en[i] = {{CGAL::to_double(b.x()), CGAL::to_double(b.y()), CGAL::to_double(b.z())}};
+      fidx[i] = face_index(arcs[i].face);
+      by_face.push_back({fidx[i], int(i)});
+    }
+    std::sort(by_face.begin(), by_face.end());
+    auto d2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+      return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+    };
+    std::vector<int> next(n, -1), prev(n, -1);
+    // candidate successors: arcs of the same face and of the faces sharing a vertex with it
+    std::vector<int> cand;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      cand.clear();
+      const int f = fidx[i];
+      double scale = 0.;
+      for(int k = 0; k < 3; ++k)
+      {
+        scale = (std::max)(scale, mesh.edge_length(3 * f + k));
+        const int v = mesh.fv[3 * f + k];
+        for(int j = mesh.vf_start[v]; j < mesh.vf_start[v + 1]; ++j)
+        {
+          const int g = mesh.vf_list[j] / 3;
+          for(auto it = std::lower_bound(by_face.begin(), by_face.end(), std::make_pair(g, -1));
+              it != by_face.end() && it->first == g; ++it)
+            cand.push_back(it->second);
+        }
+      }
+      // Matching tolerance: 1e-4 x the longest edge of the face.  Where several
+      // windows carry distance fields that differ by ~1e-11 (the same source
+      // unfolded along slightly different face strips), the ownership of the
+      // level set switches at ill-conditioned points and consecutive arcs may
+      // be separated by gaps of ~1e-7 x edge length (all arc points are still
+      // at distance R up to ~1e-11).
+      const double tol2 = (1e-4 * scale) * (1e-4 * scale);
+      int best = -1;
+      double bd = tol2;
+      for(int j : cand)
+      {
+        if(j == int(i) && (arcs[i].is_segment || arcs[i].theta_end - arcs[i].theta_start < 2. * internal::kPi - 1e-9))
+          continue;  // only a full circle may close on itself
+        const double dd = d2(en[i], st[j]);
+        if(dd <= bd && prev[j] < 0)
+        {
+          bd = dd;
+          best = j;
+        }
+      }
+      if(best >= 0)
+      {
+        next[i] = best;
+        prev[best] = int(i);
+      }
+    }
+    // consecutive arcs of the same circle in the same face (pieces of one
+    // source's circle seen through adjacent windows) are merged into one arc
+    auto mergeable = [](const Iso_arc& a, const Iso_arc& b) {
+      if(a.is_segment || b.is_segment || a.face != b.face) return false;
+      const double eps = 1e-12 * (std::max)(a.radius, 1e-300);
+      if(std::abs(a.radius - b.radius) > eps || std::abs(a.center[0] - b.center[0]) > eps ||
+         std::abs(a.center[1] - b.center[1]) > eps)
+        return false;
+      double gap = std::remainder(b.theta_start - a.theta_end, 2. * internal::kPi);
+      return std::abs(gap) < 1e-9 &&
+             (a.theta_end - a.theta_start) + (b.theta_end - b.theta_start) < 2. * internal::kPi + 1e-9;
+    };
+    std::vector<Iso_curve> curves;
+    std::vector<char> used(n, 0);
+    auto walk = [&](int start) {
+      Iso_curve c;
+      int i = start;
+      while(i >= 0 && !used[i])
+      {
+        used[i] = 1;
+        if(!c.arcs.empty() && mergeable(c.arcs.back(), arcs[i]))
+          c.arcs.back().theta_end += arcs[i].theta_end - arcs[i].theta_start;
+        else
+          c.arcs.push_back(arcs[i]);
+        i = next[i];
+      }
+      c.closed = (i == start);
+      if(c.closed && c.arcs.size() > 1 && mergeable(c.arcs.back(), c.arcs.front()))
+      {
+        c.arcs.front().theta_start -= c.arcs.back().theta_end - c.arcs.back().theta_start;
+        c.arcs.pop_back();
+      }
+      curves.push_back(std::move(c));
+    };
+    for(std::size_t i = 0; i < n; ++i)
+      if(prev[i] < 0 && !used[i]) walk(int(i));
+    for(std::size_t i = 0; i < n; ++i)
+      if(!used[i]) walk(int(i));
+    return curves;
+  }
+
+private:
+  const TriangleMesh& m_tm;
+  VertexPointMap m_vpm;
+  Mesh m;
+  double m_tol = 0.;
+  double m_radius = 0.;
+  std::vector<double> m_dist, m_pseudo_done;
+  std::vector<int> m_touched_vertices, m_touched_edges;
+  std::vector<std::vector<int> > m_edge_windows;
+  std::vector<char> m_edge_touched;
+  std::vector<Window> m_windows;
+  std::vector<Queue_entry> m_queue;
+  std::vector<std::pair<int, Vec2> > m_source_faces;
+  internal::Interval_set m_pieces, m_e_pieces;
+  std::vector<int> m_new_list;
+};
+
+}  // namespace Poisson_remesh
+
+#endif  // POISSON_REMESH_GEODESIC_EXACT_GEODESIC_ORACLE_H

@@ -1,0 +1,285 @@
+// Poisson_remesh/Sampling/Boundary_sampler.h
+//
+// The boundary sampler of paper §4.2, a model of the concept Sampler: Dunbar and Humphreys'
+// boundary sampling moved onto a surface with geodesic distance.
+//   1. fixed samples first: corners, then feature-curve samples (§4.2.4), each with its disk;
+//   2. every connected component still without a sample gets a random seed;
+//   3. repeat until the available boundary is empty: draw a point uniformly by arc length on it,
+//      make it a sample, propagate its exact geodesic field to 2r (the GeodesicOracle), extract
+//      its iso-curve at 2r and update the available boundary (BoundaryCurve).
+// When the boundary is empty the set is maximal: no two samples closer than 2r (geodesic), every
+// surface point within 2r of a sample. Levels of detail (§8): set_radius() with a smaller radius
+// rebuilds the available boundary around the existing samples, and filling again adds samples
+// without removing any, so each level contains the coarser ones.
+//
+// Determinism: all randomness comes from one std::mt19937_64 seeded by the caller.
+
+#ifndef POISSON_REMESH_SAMPLING_BOUNDARY_SAMPLER_H
+#define POISSON_REMESH_SAMPLING_BOUNDARY_SAMPLER_H
+
+#include <Poisson_remesh/Boundary/Circular_available_boundary.h>
+#include <Poisson_remesh/Geodesic/Exact_geodesic_oracle.h>
+
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/locate.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <boost/iterator/function_output_iterator.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <unordered_map>
+#include <vector>
+
+namespace Poisson_remesh {
+
+/// Why a sample is there.
+enum class Sample_kind { corner, feature, surface };
+
+/// A sample: where it lies on the input (face + barycentric coordinates), its point, its kind.
+template <class TriangleMesh, class Point_3>
+struct Poisson_sample
+{
+  CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> location;
+  Point_3 point;
+  Sample_kind kind = Sample_kind::surface;
+  unsigned int level = 0;   ///< the level of detail that added it (0: the first)
+};
+
+/// Counters of a sampling run.
+struct Sampling_statistics
+{
+  std::size_t propagations = 0;            ///< forward propagations (one per sample)
+  std::size_t classification_propagations = 0; ///< propagations from boundary midpoints (§4.2.3 decisions)
+  std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
+  std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border
+};
+
+namespace internal {
+
+/// Uniform hash grid of sample points for "which samples are within Euclidean distance d".
+class Point_grid
+{
+public:
+  void reset(double cell) { cell_ = cell; cells_.clear(); }
+  void insert(std::size_t id, const std::array<double, 3>& p) { cells_[key(p, 0, 0, 0)].push_back(id); }
+  template <class F>
+  void for_each_near(const std::array<double, 3>& p, F f) const
+  {
+    for(int i = -1; i <= 1; ++i)
+      for(int j = -1; j <= 1; ++j)
+        for(int k = -1; k <= 1; ++k) {
+          auto it = cells_.find(key(p, i, j, k));
+          if(it != cells_.end()) for(std::size_t id : it->second) f(id);
+        }
+  }
+private:
+  std::uint64_t key(const std::array<double, 3>& p, int di, int dj, int dk) const
+  {
+    auto c = [&](double x, int d) { return std::uint64_t(std::int64_t(std::floor(x / cell_)) + d + (1 << 20)) & 0x1fffff; };
+    return (c(p[0], di) << 42) | (c(p[1], dj) << 21) | c(p[2], dk);
+  }
+  double cell_ = 1;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+};
+
+} // namespace internal
+
+template <class TriangleMesh,
+          class VertexPointMap = typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type,
+          class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VertexPointMap>>
+class Boundary_sampler
+{
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::face_descriptor face_descriptor;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+
+public:
+  typedef typename boost::property_traits<VertexPointMap>::value_type Point_3;
+  typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  typedef Poisson_sample<TriangleMesh, Point_3> Sample;
+  typedef typename GeodesicOracle::Iso_arc Arc;
+  typedef Circular_available_boundary<TriangleMesh, Arc> Boundary;
+
+  /// Closer than 2r * (1 - separation_tolerance) counts as inside a disk.
+  static constexpr double separation_tolerance = 1e-9;
+
+  Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed)
+    : tm_(tm), vpm_(vpm), oracle_(tm, vpm), classifier_(tm, vpm), boundary_(tm), rng_(seed)
+  {}
+
+  /// The expellant-disk radius r (samples are at least 2r apart). A smaller radius than the
+  /// current one starts a new level of detail: the available boundary is rebuilt around the
+  /// existing samples (which all stay).
+  void set_radius(double r)
+  {
+    if(!(r > 0)) throw std::invalid_argument("Boundary_sampler: the radius must be positive");
+    if(r_ > 0 && r > r_) throw std::invalid_argument("Boundary_sampler: a new level needs a smaller radius");
+    const bool rebuild = r_ > 0;
+    r_ = r;
+    boundary_.clear();
+    boundary_.set_minimum_length(1e-9 * r);
+    grid_.reset(2 * r);
+    if(rebuild) ++level_;
+    const std::vector<Sample> previous = std::move(samples_);
+    samples_.clear();
+    for(const Sample& s : previous) add_sample(s.location, s.kind, false, s.level);
+  }
+  double radius() const { return r_; }
+
+  /// Inserts a sample at `loc` whatever the available boundary says (corners, feature points).
+  /// With `require_separation`, a location closer than 2r to an earlier sample is refused.
+  bool insert(const Face_location& loc, Sample_kind kind, bool require_separation)
+  {
+    return add_sample(loc, kind, require_separation, level_);
+  }
+
+  /// Seeds every connected component that has no sample yet with a random point (area-uniform).
+  void seed_components()
+  {
+    auto fim = CGAL::get_initialized_face_index_map(tm_);
+    std::vector<std::size_t> component(num_faces(tm_), 0);
+    auto fcc = boost::make_iterator_property_map(component.begin(), fim);
+    const std::size_t nc = CGAL::Polygon_mesh_processing::connected_components(tm_, fcc, CGAL::parameters::face_index_map(fim));
+    std::vector<char> has_sample(nc, 0);
+    for(const Sample& s : samples_) has_sample[get(fcc, s.location.first)] = 1;
+    std::vector<std::vector<face_descriptor>> faces_of(nc);
+    std::vector<std::vector<double>> cumulative(nc);
+    for(face_descriptor f : faces(tm_)) {
+      const std::size_t c = get(fcc, f);
+      if(has_sample[c]) continue;
+      const double a = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(f, tm_, CGAL::parameters::vertex_point_map(vpm_)));
+      faces_of[c].push_back(f);
+      cumulative[c].push_back((cumulative[c].empty() ? 0.0 : cumulative[c].back()) + a);
+    }
+    for(std::size_t c = 0; c < nc; ++c) {
+      if(has_sample[c] || faces_of[c].empty()) continue;
+      const double u = uniform01() * cumulative[c].back();
+      const std::size_t i = std::min<std::size_t>(faces_of[c].size() - 1,
+        std::size_t(std::upper_bound(cumulative[c].begin(), cumulative[c].end(), u) - cumulative[c].begin()));
+      double b1 = uniform01(), b2 = uniform01();
+      if(b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+      add_sample({faces_of[c][i], {{1 - b1 - b2, b1, b2}}}, Sample_kind::surface, false, level_);
+    }
+  }
+
+  /// Draws samples on the available boundary until it is empty (§4.2, steps 3-5).
+  void fill()
+  {
+    while(!boundary_.empty()) {
+      const Face_location loc = boundary_.pick([this] { return uniform01(); });
+      add_sample(loc, Sample_kind::surface, false, level_);
+    }
+  }
+
+  const std::vector<Sample>& samples() const { return samples_; }
+  const Boundary& available_boundary() const { return boundary_; }
+  const Sampling_statistics& statistics() const { return stats_; }
+  GeodesicOracle& oracle() { return oracle_; }
+
+  /// A number in [0, 1) from the sampler's generator (53 random bits; the same on every platform).
+  double uniform01() { return double(rng_() >> 11) * (1.0 / 9007199254740992.0); }
+
+private:
+  std::array<double, 3> coords(const Point_3& p) const
+  {
+    return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+  }
+
+  bool add_sample(const Face_location& loc, Sample_kind kind, bool require_separation, unsigned int level)
+  {
+    if(!(r_ > 0)) throw std::logic_error("Boundary_sampler: set_radius() first");
+    const double two_r = 2 * r_, inside = two_r * (1 - separation_tolerance);
+    const Point_3 p = CGAL::Polygon_mesh_processing::construct_point(loc, tm_, CGAL::parameters::vertex_point_map(vpm_));
+    const std::array<double, 3> pc = coords(p);
+
+    oracle_.propagate(loc, two_r);
+    ++stats_.propagations;
+    if(require_separation) {
+      bool too_close = false;
+      grid_.for_each_near(pc, [&](std::size_t id) {
+        if(too_close) return;
+        const auto d = oracle_.distance(samples_[id].location);
+        too_close = d && *d < inside;
+      });
+      if(too_close) { ++stats_.rejected_feature_samples; return false; }
+    }
+
+    // the new iso-curve at 2r, and the faces the new disk meets
+    std::vector<Arc> arcs;
+    for(const auto& curve : oracle_.iso_curve(two_r)) {
+      arcs.insert(arcs.end(), curve.arcs.begin(), curve.arcs.end());
+      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+    }
+    std::vector<face_descriptor> disk_faces;
+    disk_faces.push_back(loc.first);
+    for(const Arc& a : arcs) disk_faces.push_back(a.face);
+    oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
+      for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
+        if(f != GT::null_face()) disk_faces.push_back(f);
+    }));
+    std::sort(disk_faces.begin(), disk_faces.end());
+    disk_faces.erase(std::unique(disk_faces.begin(), disk_faces.end()), disk_faces.end());
+
+    const std::size_t id = samples_.size();
+    boundary_.update(arcs, id, disk_faces,
+      [&](const Face_location& x) {
+        const auto d = oracle_.distance(x);
+        return d && *d < inside;
+      },
+      [&](const Face_location& x) { return covered_by_earlier_samples(x, inside); });
+
+    samples_.push_back({loc, p, kind, level});
+    grid_.insert(id, pc);
+    return true;
+  }
+
+  // Is x closer than `inside` to an earlier sample? Only samples within Euclidean distance
+  // `inside` can be (geodesic >= Euclidean); the exact test propagates from x.
+  bool covered_by_earlier_samples(const Face_location& x, double inside)
+  {
+    const Point_3 px = CGAL::Polygon_mesh_processing::construct_point(x, tm_, CGAL::parameters::vertex_point_map(vpm_));
+    const std::array<double, 3> xc = coords(px);
+    std::vector<std::size_t> near;
+    grid_.for_each_near(xc, [&](std::size_t id) {
+      const std::array<double, 3> s = coords(samples_[id].point);
+      const double d2 = (s[0] - xc[0]) * (s[0] - xc[0]) + (s[1] - xc[1]) * (s[1] - xc[1]) + (s[2] - xc[2]) * (s[2] - xc[2]);
+      if(d2 < inside * inside) near.push_back(id);
+    });
+    if(near.empty()) return false;
+    classifier_.propagate(x, inside);
+    ++stats_.classification_propagations;
+    for(std::size_t id : near) {
+      const auto d = classifier_.distance(samples_[id].location);
+      if(d && *d < inside) return true;
+    }
+    return false;
+  }
+
+  template <class Curve>
+  bool touches_border(const Curve& c) const
+  {
+    for(const Arc& a : c.arcs)
+      for(auto h : CGAL::halfedges_around_face(halfedge(a.face, tm_), tm_))
+        if(is_border(opposite(h, tm_), tm_)) return true;
+    return false;
+  }
+
+  const TriangleMesh& tm_;
+  VertexPointMap vpm_;
+  GeodesicOracle oracle_, classifier_;
+  Boundary boundary_;
+  std::mt19937_64 rng_;
+  internal::Point_grid grid_;
+  std::vector<Sample> samples_;
+  Sampling_statistics stats_;
+  double r_ = 0;
+  unsigned int level_ = 0;
+};
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_SAMPLING_BOUNDARY_SAMPLER_H

@@ -1,0 +1,144 @@
+// Poisson_remesh/poisson_disk_sample.h
+//
+// Entry points: poisson_disk_sample(mesh, out, np) and poisson_disk_sample_levels(mesh, radii, out, np)
+// -- a maximal geodesic Poisson-disk set on a triangle surface (paper §4), usable alone for object
+// distribution on surfaces, or as the vertices of a remesh; and progressive levels of detail (§8).
+// Features are sampled first (§4.2.4): corners, then feature curves at even intervals no shorter
+// than 2r, then the surface by boundary sampling (Boundary_sampler).
+
+#ifndef POISSON_REMESH_POISSON_DISK_SAMPLE_H
+#define POISSON_REMESH_POISSON_DISK_SAMPLE_H
+
+#include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Sampling/Boundary_sampler.h>
+#include <Poisson_remesh/parameters.h>
+#include <Poisson_remesh/sizing.h>
+
+#include <CGAL/Polygon_mesh_processing/measure.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace Poisson_remesh {
+
+/// What a sampling run did.
+struct Poisson_disk_sampling_result
+{
+  double radius = 0;                 ///< r: samples are at least 2r apart (geodesic)
+  std::size_t number_of_samples = 0;
+  std::size_t number_of_corners = 0;
+  std::size_t number_of_feature_samples = 0;
+  Sampling_statistics statistics;
+};
+
+namespace internal {
+
+// r from the named parameters: sampling_radius, else target_edge_length (spacing 2r = edge
+// length), else target_vertex_count through Eq. 1 (rho = 0.844), else the input's vertex count.
+template <class TriangleMesh, class VPM, class NamedParameters>
+double sampling_radius_from_parameters(const TriangleMesh& tm, VPM vpm, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const double r = choose_parameter(get_parameter(np, internal_np::sampling_radius), 0.0);
+  if(r > 0) return r;
+  const double l = choose_parameter(get_parameter(np, internal_np::target_edge_length), 0.0);
+  if(l > 0) return 0.5 * l;
+  double n = double(choose_parameter(get_parameter(np, internal_np::target_vertex_count), 0));
+  if(!(n > 0)) n = double(vertices(tm).size());
+  const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(tm, CGAL::parameters::vertex_point_map(vpm)));
+  return disk_radius_from_vertex_count(area, n);
+}
+
+template <class Sampler, class TriangleMesh, class VPM, class NamedParameters>
+void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const NamedParameters& np,
+                     bool first_level, Poisson_disk_sampling_result& result)
+{
+  const Feature_set<TriangleMesh> fs = detect_features(tm, np);
+  for(auto v : fs.corners) {
+    // a location of the corner in one of its faces
+    auto h = halfedge(v, tm);
+    if(is_border(h, tm)) h = prev(opposite(h, tm), tm);
+    // corners are always kept; on a finer level they are already there and are refused
+    if(sampler.insert(location_on_halfedge(h, 1.0, tm), Sample_kind::corner, !first_level)) ++result.number_of_corners;
+  }
+  for(const auto& s : feature_sample_locations(tm, vpm, fs, 2 * sampler.radius()))
+    if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
+}
+
+} // namespace internal
+
+/*!
+  computes a maximal geodesic Poisson-disk sample set of `tm` (a triangle mesh, any FaceGraph)
+  and writes its `Poisson_sample`s (location, point, kind) to `out`.
+
+  Named parameters (all optional):
+  - size, first given wins: `sampling_radius` (r), `target_edge_length` (2r), `target_vertex_count`
+    (r from Eq. 1 with rho = 0.844); default: the input's vertex count
+  - `random_seed` (CGAL, default 0): the same seed gives the same samples
+  - features: `feature_policy` (default Feature_policy::detect), `sharp_angle` (60),
+    `corner_angle` (60), `edge_is_constrained_map` (CGAL; implies Feature_policy::user_map)
+  - `vertex_point_map` (CGAL)
+*/
+template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
+Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputIterator out,
+                                                 const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  if(faces(tm).empty()) throw std::invalid_argument("poisson_disk_sample: the mesh has no faces");
+
+  Poisson_disk_sampling_result result;
+  result.radius = internal::sampling_radius_from_parameters(tm, vpm, np);
+  Boundary_sampler<TriangleMesh, decltype(vpm)> sampler(tm, vpm, seed);
+  sampler.set_radius(result.radius);
+  internal::sample_features(sampler, tm, vpm, np, true, result);
+  sampler.seed_components();
+  sampler.fill();
+  for(const auto& s : sampler.samples()) *out++ = s;
+  result.number_of_samples = sampler.samples().size();
+  result.statistics = sampler.statistics();
+  return result;
+}
+
+/*!
+  progressive multi-level sampling (§8): one maximal set per radius of `radii` (decreasing), each
+  containing all samples of the coarser ones. Writes every sample once, with `level` = the index
+  of the radius that added it; the samples of level k and below form the set at radius radii[k].
+  Named parameters as poisson_disk_sample() (the size parameters are ignored).
+*/
+template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
+std::vector<Poisson_disk_sampling_result>
+poisson_disk_sample_levels(const TriangleMesh& tm, const std::vector<double>& radii, OutputIterator out,
+                           const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  for(std::size_t i = 0; i < radii.size(); ++i)
+    if(!(radii[i] > 0) || (i > 0 && radii[i] >= radii[i - 1]))
+      throw std::invalid_argument("poisson_disk_sample_levels: radii must be positive and decreasing");
+
+  std::vector<Poisson_disk_sampling_result> results;
+  Boundary_sampler<TriangleMesh, decltype(vpm)> sampler(tm, vpm, seed);
+  for(double r : radii) {
+    Poisson_disk_sampling_result result;
+    result.radius = r;
+    sampler.set_radius(r);
+    internal::sample_features(sampler, tm, vpm, np, results.empty(), result);
+    sampler.seed_components();
+    sampler.fill();
+    result.number_of_samples = sampler.samples().size();
+    result.statistics = sampler.statistics();
+    results.push_back(result);
+  }
+  for(const auto& s : sampler.samples()) *out++ = s;
+  return results;
+}
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POISSON_DISK_SAMPLE_H
