@@ -2,7 +2,7 @@
 # Drives the command-line programs as a user would and checks exit codes, messages and that an
 # output file is never left partial or clobbered. Usage: command_line_tests.sh MESH_QUALITY POISSON_REMESH DATA_DIR
 set -u
-mesh_quality="$1"; poisson_remesh="$2"; data="$3"
+mesh_quality="$1"; poisson_remesh="$2"; data="$3"; poisson_sample="$4"
 dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
 passed=0; failed=0
 check() { # check NAME CONDITION...
@@ -52,6 +52,17 @@ check "output replaced" sh -c "head -1 '$dir/keep.off' | grep -q OFF"
 check "report written" grep -q '"input"' "$dir/r.json"
 check "svg written" grep -q "</svg>" "$dir/r.svg"
 check "no temporary files left" sh -c "! ls -a '$dir' | grep -q partial"
+
+# poisson_sample
+check "poisson_sample --help" run 0 "$poisson_sample" --help
+check "poisson_sample needs a size" run 2 "$poisson_sample" "$data/meshes/elephant.off" "$dir/s.xyz"
+check "poisson_sample bad features" run 2 "$poisson_sample" --vertices 100 --features sharp "$data/meshes/elephant.off" "$dir/s.xyz"
+check "poisson_sample bad input" run 1 "$poisson_sample" --vertices 100 "$dir/nan.off" "$dir/s.xyz"
+check "poisson_sample runs" run 0 "$poisson_sample" --vertices 500 --seed 3 "$data/meshes/elephant.off" "$dir/s.xyz"
+check "one line per sample, three numbers" sh -c "n=\$(wc -l < '$dir/s.xyz'); [ \$n -gt 450 ] && [ \$n -lt 550 ] && awk 'NF != 3 { exit 1 }' '$dir/s.xyz'"
+check "same seed, same file" sh -c "'$poisson_sample' --vertices 500 --seed 3 '$data/meshes/elephant.off' '$dir/t.xyz' 2>/dev/null && cmp -s '$dir/s.xyz' '$dir/t.xyz'"
+check "spacing and kinds" run 0 "$poisson_sample" --spacing 0.05 --features none --kinds "$data/meshes/fandisk.off" "$dir/k.xyz"
+check "kinds column" sh -c "awk 'NF != 4 { exit 1 }' '$dir/k.xyz'"
 
 echo "command_line_programs: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
