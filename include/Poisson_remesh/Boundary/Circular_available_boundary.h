@@ -86,9 +86,18 @@ private:
   std::vector<double> weights_, tree_;
 };
 
-/// Parameters in [0, 1] of arc `a` where it meets the circle of arc `b` inside `b`'s angular range.
+/// Where arc `a` meets arc `b`: the parameter on `a`, and whether `a`, running forward, enters the
+/// disk that `b` bounds (the region closer to `b`'s source lies on the left of `b`, which runs
+/// counter-clockwise around its center). `reliable` is false for grazing crossings.
+struct Arc_crossing
+{
+  double t;
+  bool entering;
+  bool reliable;
+};
+
 template <class Arc>
-void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<double>& out)
+void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
 {
   const double dx = b.center[0] - a.center[0], dy = b.center[1] - a.center[1];
   const double d2 = dx * dx + dy * dy, d = std::sqrt(d2);
@@ -108,9 +117,22 @@ void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<double>& out)
     if(db > span_b + tol && db < two_pi - tol) continue;   // not on b
     if(da > span_a + tol && da < two_pi - tol) continue;   // not on a
     const double t = (da > span_a + tol) ? 0.0 : (span_a > 0 ? std::min(1.0, da / span_a) : 0.0);
-    out.push_back(t);
+    // forward directions (counter-clockwise tangents) of a and b at the crossing
+    const double ta_x = -(py - a.center[1]), ta_y = px - a.center[0];
+    const double tb_x = -(py - b.center[1]), tb_y = px - b.center[0];
+    const double cross = tb_x * ta_y - tb_y * ta_x;   // > 0: a turns to b's left, into b's disk
+    const double sine = cross / (ra * rb);
+    out.push_back({t, cross > 0, std::abs(sine) > 1e-6});
     if(h == 0) break;
   }
+}
+
+template <class Arc>
+void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<double>& out)
+{
+  std::vector<Arc_crossing> c;
+  circle_arc_crossings(a, b, c);
+  for(const Arc_crossing& x : c) out.push_back(x.t);
 }
 
 /// Arc `a` restricted to parameters [t0, t1].
@@ -191,28 +213,37 @@ public:
     }
   }
 
-  /// The update of §4.2.3 with the iso-curve `new_arcs` of sample `sample`:
+  /// The update of §4.2.3 with the iso-curve `chains` of sample `sample` (ordered chains of arcs,
+  /// as the oracle returns them):
   ///   faces                   the faces the new disk D(q, 2r) can meet (the sampler passes the
   ///                           faces around the vertices the propagation reached, the faces of
-  ///                           `new_arcs` and q's face: a face meeting the disk contains q, is
+  ///                           the new arcs and q's face: a face meeting the disk contains q, is
   ///                           crossed by its boundary, or has a vertex inside it);
   ///   in_new_disk(location)   true when the location is closer than 2r to the new sample;
   ///   in_old_disks(location)  true when the location is closer than 2r to an earlier sample.
-  template <class FaceRange, class InNewDisk, class InOldDisks>
-  void update(const std::vector<Arc>& new_arcs, std::size_t sample, const FaceRange& faces,
+  /// A run of the new curve between two crossings with the stored boundary lies inside the union
+  /// of the earlier disks when, at its first crossing, it turns into the disk of the stored arc it
+  /// crosses, and then leaves at its last crossing (the region a stored arc bounds is on its
+  /// left); a run whose two ends disagree, that has a grazing crossing, or a chain that crosses
+  /// nothing, is decided by in_old_disks at its midpoint.
+  template <class Chains, class FaceRange, class InNewDisk, class InOldDisks>
+  void update(const Chains& chains, std::size_t sample, const FaceRange& faces,
               InNewDisk in_new_disk, InOldDisks in_old_disks)
   {
-    // split parameters of the stored arcs and of the new arcs, face by face (§4.2.3: arcs only
-    // meet inside a common triangle)
+    // crossings of the new arcs with the stored arcs, face by face (§4.2.3: arcs only meet inside
+    // a common triangle)
     std::vector<std::pair<std::size_t, std::vector<double>>> stored_cuts;
-    std::vector<std::vector<double>> new_cuts(new_arcs.size());
-    for(std::size_t j = 0; j < new_arcs.size(); ++j) {
-      for(std::size_t i : arcs_in_face_[get(fim_, new_arcs[j].face)]) {
-        std::vector<double> ti;
-        internal::circle_arc_crossings(arcs_[i].arc, new_arcs[j], ti);
-        internal::circle_arc_crossings(new_arcs[j], arcs_[i].arc, new_cuts[j]);
-        if(!ti.empty()) stored_cuts.emplace_back(i, std::move(ti));
-      }
+    std::vector<std::vector<std::vector<internal::Arc_crossing>>> new_cuts(chains.size());
+    for(std::size_t c = 0; c < chains.size(); ++c) {
+      const auto& arcs = chains[c].arcs;
+      new_cuts[c].resize(arcs.size());
+      for(std::size_t j = 0; j < arcs.size(); ++j)
+        for(std::size_t i : arcs_in_face_[get(fim_, arcs[j].face)]) {
+          std::vector<double> ti;
+          internal::circle_arc_crossings(arcs_[i].arc, arcs[j], ti);
+          internal::circle_arc_crossings(arcs[j], arcs_[i].arc, new_cuts[c][j]);
+          if(!ti.empty()) stored_cuts.emplace_back(i, std::move(ti));
+        }
     }
     std::sort(stored_cuts.begin(), stored_cuts.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -232,15 +263,8 @@ public:
         cuts.insert(cuts.end(), stored_cuts[l].second.begin(), stored_cuts[l].second.end());
       if(alive_[i]) replace_by_kept_pieces(i, cuts, [&](const Face_location& loc) { return !in_new_disk(loc); });
     }
-    // 2. new arcs: keep what no earlier disk covers
-    for(std::size_t j = 0; j < new_arcs.size(); ++j) {
-      std::vector<Arc> pieces;
-      split(new_arcs[j], new_cuts[j], pieces);
-      for(const Arc& piece : pieces) {
-        if(piece.length() < min_length_) continue;
-        if(!in_old_disks(location(piece, 0.5))) add(piece, sample);
-      }
-    }
+    // 2. new chains: keep what no earlier disk covers, run by run
+    for(std::size_t c = 0; c < chains.size(); ++c) add_uncovered_runs(chains[c], new_cuts[c], sample, in_old_disks);
   }
 
   Face_location location(const Arc& a, double t) const
@@ -256,7 +280,91 @@ public:
   std::size_t number_of_slots() const { return arcs_.size(); }
   bool is_alive(std::size_t i) const { return alive_[i]; }
 
+  /// decisions taken by crossing directions / by in_old_disks (for statistics)
+  std::size_t runs_decided_by_crossings() const { return by_crossings_; }
+  std::size_t runs_decided_by_distance() const { return by_distance_; }
+
 private:
+  struct Piece
+  {
+    Arc arc;
+    int start = -1, end = -1;   // index of the crossing at its start / end, -1: none (arc junction)
+  };
+
+  template <class Chain, class InOldDisks>
+  void add_uncovered_runs(const Chain& chain, std::vector<std::vector<internal::Arc_crossing>>& cuts,
+                          std::size_t sample, InOldDisks in_old_disks)
+  {
+    // pieces in chain order, with the crossings that bound them
+    std::vector<Piece> pieces;
+    std::vector<internal::Arc_crossing> crossings;
+    for(std::size_t j = 0; j < chain.arcs.size(); ++j) {
+      auto& cj = cuts[j];
+      std::sort(cj.begin(), cj.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+      double t0 = 0;
+      int pending = -1;   // crossing at t0
+      for(const auto& x : cj) {
+        if(x.t <= t0) { crossings.push_back(x); pending = int(crossings.size()) - 1; continue; }
+        if(x.t >= 1) { crossings.push_back(x); pieces.push_back({internal::sub_arc(chain.arcs[j], t0, 1.0), pending, int(crossings.size()) - 1}); t0 = 1; pending = -1; break; }
+        crossings.push_back(x);
+        pieces.push_back({internal::sub_arc(chain.arcs[j], t0, x.t), pending, int(crossings.size()) - 1});
+        t0 = x.t;
+        pending = int(crossings.size()) - 1;
+      }
+      if(t0 < 1) pieces.push_back({internal::sub_arc(chain.arcs[j], t0, 1.0), pending, -1});
+    }
+    if(pieces.empty()) return;
+    // runs: maximal sequences of pieces joined without crossing (closed chains wrap around)
+    const std::size_t n = pieces.size();
+    std::size_t first = 0;
+    if(chain.closed) {
+      while(first < n && pieces[first].start < 0) ++first;
+      if(first == n) {   // no crossing at all: one decision for the whole curve
+        ++by_distance_;
+        const Piece& mid = pieces[n / 2];
+        if(!in_old_disks(location(mid.arc, 0.5)))
+          for(const Piece& p : pieces) if(p.arc.length() >= min_length_) add(p.arc, sample);
+        return;
+      }
+    }
+    std::size_t i = first;
+    std::size_t done = 0;
+    while(done < n) {
+      std::vector<std::size_t> run = {i};
+      std::size_t l = i;
+      while(true) {
+        const std::size_t next = chain.closed ? (l + 1) % n : l + 1;
+        if(pieces[l].end >= 0 || next >= n || next == first || pieces[next].start >= 0) break;
+        l = next;
+        run.push_back(l);
+      }
+      const int sc = pieces[run.front()].start, ec = pieces[run.back()].end;
+      double length = 0;
+      for(std::size_t p : run) length += pieces[p].arc.length();
+      if(length >= min_length_) {
+        int inside = -1;   // -1: undecided
+        const bool s_ok = sc >= 0 && crossings[sc].reliable, e_ok = ec >= 0 && crossings[ec].reliable;
+        if(s_ok && e_ok && crossings[sc].entering != crossings[ec].entering) inside = crossings[sc].entering;
+        if(inside < 0) {
+          ++by_distance_;
+          // the midpoint of the run, by length
+          double half = 0.5 * length;
+          std::size_t p = 0;
+          while(p + 1 < run.size() && half > pieces[run[p]].arc.length()) half -= pieces[run[p++]].arc.length();
+          const Arc& a = pieces[run[p]].arc;
+          inside = in_old_disks(location(a, a.length() > 0 ? std::min(1.0, half / a.length()) : 0.5)) ? 1 : 0;
+        } else {
+          ++by_crossings_;
+        }
+        if(!inside)
+          for(std::size_t p : run) if(pieces[p].arc.length() >= min_length_) add(pieces[p].arc, sample);
+      }
+      done += run.size();
+      i = chain.closed ? (l + 1) % n : l + 1;
+      if(!chain.closed && i >= n) break;
+    }
+  }
+
   void add(const Arc& a, std::size_t sample)
   {
     const std::size_t id = arcs_.size();
@@ -323,6 +431,7 @@ private:
   internal::Fenwick_tree fenwick_;
   std::size_t alive_count_ = 0;
   double min_length_ = 0;
+  std::size_t by_crossings_ = 0, by_distance_ = 0;
 };
 
 } // namespace Poisson_remesh

@@ -39,7 +39,10 @@
 // trimmed (the existing window wins ties).  No window of positive width is
 // ever dropped: even a very narrow window can fan out into a wide wedge when
 // its (pseudo-)source is close to its edge, and dropping it would leave a
-// crack in the distance field.  Measured agreement with CGAL::Surface_mesh_shortest_path
+// crack in the distance field.  Vertices whose angle sum exceeds 2 pi + 1e-13
+// are saddles (pseudo-sources): the shadow left behind a vertex with a smaller
+// excess is narrower than the visibility tolerance (1e-10 x edge length) used
+// when a face point is tested against a window.  Measured agreement with CGAL::Surface_mesh_shortest_path
 // is ~1e-15 x diagonal on well-shaped meshes and ~3e-14 x diagonal on meshes
 // with needle triangles.
 //
@@ -316,7 +319,7 @@ public:
       }
     }
     for(std::size_t i = 0; i < nv; ++i)
-      if(angle_sum[i] > 2. * kPi - 1e-9) pseudo[i] = 1;  // saddle, or flat up to rounding (see below)
+      if(angle_sum[i] > 2. * kPi + 1e-13) pseudo[i] = 1;  // saddle (see the note on tolerances above)
   }
 
   double dist3(int a, int b) const
@@ -928,7 +931,6 @@ private:
   {
     const int s = w.slot;
     const double L = m.edge_length(s);
-    const double tol_x = 1e-12 * L;
     const int e = m.fedge[s];
     std::vector<int>& list = m_edge_windows[e];
     m_new_list.clear();
@@ -1212,10 +1214,14 @@ private:
     }
     for(const auto& sf : m_source_faces)
       if(sf.first == f) add(Generator{sf.second, 0., nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
+    // vertices: pseudo-sources (saddle / border vertices) and a source vertex.
+    // A convex vertex never realises the minimum on a set of positive measure,
+    // so it would only add breakpoints.
     for(int i = 0; i < 3; ++i)
     {
-      const double dv = m_dist[m.fv[3 * f + i]];
-      if(dv < R) add(Generator{P[i], dv, nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
+      const int v = m.fv[3 * f + i];
+      const double dv = m_dist[v];
+      if(dv < R && (m.pseudo[v] || dv == 0.)) add(Generator{P[i], dv, nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
     }
   }
 

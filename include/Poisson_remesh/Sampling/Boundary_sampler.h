@@ -189,8 +189,19 @@ private:
     return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
   }
 
-  bool add_sample(const Face_location& loc, Sample_kind kind, bool require_separation, unsigned int level)
+  // Barycentric coordinates within rounding of 0 are made 0: a location a hair's breadth off a
+  // vertex or an edge is on it (propagations from such near-vertex sources lost windows).
+  static Face_location snapped(Face_location loc)
   {
+    double sum = 0;
+    for(double& b : loc.second) { if(b < 1e-12) b = 0; sum += b; }
+    for(double& b : loc.second) b /= sum;
+    return loc;
+  }
+
+  bool add_sample(const Face_location& unsnapped, Sample_kind kind, bool require_separation, unsigned int level)
+  {
+    const Face_location loc = snapped(unsnapped);
     if(!(r_ > 0)) throw std::logic_error("Boundary_sampler: set_radius() first");
     const double two_r = 2 * r_, inside = two_r * (1 - separation_tolerance);
     const Point_3 p = CGAL::Polygon_mesh_processing::construct_point(loc, tm_, CGAL::parameters::vertex_point_map(vpm_));
@@ -209,8 +220,9 @@ private:
     }
 
     // the new iso-curve at 2r, and the faces the new disk meets
+    const auto chains = oracle_.iso_curve(two_r);
     std::vector<Arc> arcs;
-    for(const auto& curve : oracle_.iso_curve(two_r)) {
+    for(const auto& curve : chains) {
       arcs.insert(arcs.end(), curve.arcs.begin(), curve.arcs.end());
       if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
     }
@@ -225,7 +237,7 @@ private:
     disk_faces.erase(std::unique(disk_faces.begin(), disk_faces.end()), disk_faces.end());
 
     const std::size_t id = samples_.size();
-    boundary_.update(arcs, id, disk_faces,
+    boundary_.update(chains, id, disk_faces,
       [&](const Face_location& x) {
         const auto d = oracle_.distance(x);
         return d && *d < inside;
