@@ -10,6 +10,7 @@
 // non-zero exit status.
 
 #include <Poisson_remesh/Geodesic/Exact_geodesic_oracle.h>
+#include <Poisson_remesh/read_surface_mesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -33,7 +34,7 @@ static int usage(const std::string& msg)
 {
   std::cerr << "error: " << msg << "\n"
             << "usage: geodesic_distances MESH (--source-vertex I | --source-face F --bary A B C) --radius R\n";
-  return 1;
+  return 2;
 }
 
 static bool parse_double(const char* s, double& x)
@@ -96,15 +97,15 @@ int main(int argc, char** argv)
   if(source_vertex >= 0 && has_bary) return usage("--bary is only valid with --source-face");
 
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(mesh_path, mesh) || num_vertices(mesh) == 0)
+  try
   {
-    std::cerr << "error: cannot read a polygon mesh from '" << mesh_path << "'\n";
-    return 2;
+    // the package's reader: validation with clear messages; vertex indices are the file's
+    Poisson_remesh::read_surface_mesh(mesh_path, mesh);
   }
-  if(!CGAL::is_triangle_mesh(mesh))
+  catch(const Poisson_remesh::Input_error& e)
   {
-    std::cerr << "error: '" << mesh_path << "' is not a triangle mesh\n";
-    return 2;
+    std::cerr << "geodesic_distances: " << e.what() << "\n";
+    return 1;
   }
 
   Oracle::Face_location source;
@@ -113,13 +114,13 @@ int main(int argc, char** argv)
     if(std::size_t(source_vertex) >= num_vertices(mesh))
     {
       std::cerr << "error: vertex index " << source_vertex << " out of range [0, " << num_vertices(mesh) << ")\n";
-      return 3;
+      return 2;
     }
     const Mesh::Vertex_index v(static_cast<Mesh::size_type>(source_vertex));
     if(halfedge(v, mesh) == Mesh::null_halfedge())
     {
       std::cerr << "error: vertex " << source_vertex << " is isolated\n";
-      return 3;
+      return 2;
     }
     source = CGAL::Polygon_mesh_processing::locate_vertex<double>(v, mesh);
   }
@@ -128,13 +129,13 @@ int main(int argc, char** argv)
     if(std::size_t(source_face) >= num_faces(mesh))
     {
       std::cerr << "error: face index " << source_face << " out of range [0, " << num_faces(mesh) << ")\n";
-      return 3;
+      return 2;
     }
     const double s = bary[0] + bary[1] + bary[2];
     if(bary[0] < 0. || bary[1] < 0. || bary[2] < 0. || !(s > 0.))
     {
       std::cerr << "error: barycentric coordinates must be non-negative with a positive sum\n";
-      return 3;
+      return 2;
     }
     source = Oracle::Face_location(Mesh::Face_index(static_cast<Mesh::size_type>(source_face)),
                                    {{bary[0] / s, bary[1] / s, bary[2] / s}});

@@ -2,7 +2,7 @@
 # Drives the command-line programs as a user would and checks exit codes, messages and that an
 # output file is never left partial or clobbered. Usage: command_line_tests.sh MESH_QUALITY POISSON_REMESH DATA_DIR
 set -u
-mesh_quality="$1"; poisson_remesh="$2"; data="$3"; poisson_sample="$4"
+mesh_quality="$1"; poisson_remesh="$2"; data="$3"; poisson_sample="$4"; geodesic_distances="$5"
 dir=$(mktemp -d); trap 'rm -rf "$dir"' EXIT
 passed=0; failed=0
 check() { # check NAME CONDITION...
@@ -63,6 +63,15 @@ check "one line per sample, three numbers" sh -c "n=\$(wc -l < '$dir/s.xyz'); [ 
 check "same seed, same file" sh -c "'$poisson_sample' --vertices 500 --seed 3 '$data/meshes/elephant.off' '$dir/t.xyz' 2>/dev/null && cmp -s '$dir/s.xyz' '$dir/t.xyz'"
 check "spacing and kinds" run 0 "$poisson_sample" --spacing 0.05 --features none --kinds "$data/meshes/fandisk.off" "$dir/k.xyz"
 check "kinds column" sh -c "awk 'NF != 4 { exit 1 }' '$dir/k.xyz'"
+
+# geodesic_distances
+check "geodesic_distances from a vertex" run 0 "$geodesic_distances" "$data/meshes/fandisk.off" --source-vertex 10 --radius 0.1
+check "source at distance 0, two columns, sorted, all within R" sh -c "grep -q '^10 0\$' '$dir/out' && awk 'NF != 2 || \$2 > 0.1 || \$1 <= prev { exit 1 } { prev = \$1 }' prev=-1 '$dir/out'"
+check "geodesic_distances from a face point" run 0 "$geodesic_distances" "$data/meshes/fandisk.off" --source-face 5 --bary 0.2 0.3 0.5 --radius 0.05
+check "face source reaches its face's vertices" sh -c "[ \$(wc -l < '$dir/out') -ge 3 ]"
+check "geodesic_distances bad index" run 2 "$geodesic_distances" "$data/meshes/fandisk.off" --source-vertex 99999999 --radius 0.1
+check "geodesic_distances bad mesh" run 1 "$geodesic_distances" "$dir/nan.off" --source-vertex 0 --radius 0.1
+check "geodesic_distances no radius" run 2 "$geodesic_distances" "$data/meshes/fandisk.off" --source-vertex 0
 
 echo "command_line_programs: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]
