@@ -6,8 +6,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/build.sh"
 build="${POISSON_REMESH_BUILD_DIR:-$root/build}"
 mkdir -p "$root/out"
-# The Poisson-disk remesher itself is not built yet (issue 5): until then the main job shows
-# the default model's quality beside the peer's (CGAL isotropic_remeshing) and says so.
-"$build/examples/Poisson_remesh/poisson_remesh" --method isotropic \
-  --report "$root/out/fandisk_peer.json" --svg "$root/out/fandisk_peer_angles.svg" \
-  "$build/data/meshes/fandisk.off" "$root/out/fandisk_peer.off"
+# Our remesher at the input's vertex count, with the peer (CGAL isotropic_remeshing) beside it.
+"$build/examples/Poisson_remesh/poisson_remesh" --compare-peer \
+  --report "$root/out/fandisk_remeshed.json" --svg "$root/out/fandisk_remeshed_angles.svg" \
+  "$build/data/meshes/fandisk.off" "$root/out/fandisk_remeshed.off"

@@ -9,6 +9,7 @@
 // usage: remesh_benchmark [--meshes fandisk,triceratops,...] [--factor F] [--contenders a,b]
 //                         [--markdown FILE] [--json FILE]
 #include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
+#include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 
@@ -52,6 +53,9 @@ typedef std::function<double(const Mesh& input, double target, Mesh& output)> Co
 static std::map<std::string, Contender> contenders()
 {
   return {
+    {"poisson_remesh", [](const Mesh& input, double target, Mesh& output) {
+       return PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(target)).random_seed(1u)).seconds();
+     }},
     {"cgal_isotropic", [](const Mesh& input, double target, Mesh& output) {
        PR::Peers::Isotropic_remeshing_settings s;
        s.target_vertex_count = target;

@@ -4,14 +4,15 @@
 // before/after quality table and writes OUT atomically (a failure never leaves a partial or
 // clobbered OUT), plus optional JSON report and angle-histogram SVG.
 //
-// The Poisson-disk remesher itself (paper §4-§6) is being built stage by stage; until it is
-// complete, `--method poisson` (the default) says so and exits with code 4, and
-// `--method isotropic` runs the peer, CGAL's isotropic_remeshing, at the same target.
+// `--method poisson` (the default) runs Poisson_remesh::poisson_remesh (paper §3-§6);
+// `--method isotropic` runs the peer, CGAL's isotropic_remeshing, at the same target, and
+// `--compare-peer` adds the peer's column to the table.
 #include "command_line.h"
 
 #include <Poisson_remesh/IO/write_quality_report.h>
 #include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
 #include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 #include <Poisson_remesh/sizing.h>
 #include <Poisson_remesh/write_surface_mesh.h>
@@ -40,20 +41,21 @@ static const char* usage =
   "  --method M          poisson (default; the Poisson-disk remesher) or isotropic (CGAL's\n"
   "                      isotropic_remeshing, the peer of our benchmarks)\n"
   "  --seed S            random seed (default 0); the same seed gives the same output\n"
-  "  --iterations K      relaxation iterations (isotropic: default 5)\n"
+  "  --iterations K      relaxation rounds (poisson: default 10, isotropic: default 5)\n"
   "  --sharp-angle A     dihedral angle in degrees over which edges are kept as features (default 60)\n"
+  "  --features none     keep no sharp features (borders are always kept)\n"
+  "  --compare-peer      also run the peer and add its column to the table\n"
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
   "  --repair            remove degenerate (zero-area) input faces instead of refusing them\n"
   "  --no-self-intersections  skip the self-intersection check of the report\n"
   "  --help              this text\n"
-  "exit codes: 0 done, 1 bad input, 2 bad usage, 3 output not written, 4 stage not available yet\n";
+  "exit codes: 0 done, 1 bad input, 2 bad usage, 3 output not written, 4 option of a stage not available yet\n";
 
 // Options of pipeline stages that do not exist yet, with the stage that will bring them.
 static const std::map<std::string, std::string> later_options = {
   {"--adaptive", "adaptive density"}, {"--gamma", "adaptive density"}, {"--min-edge", "adaptive density"},
   {"--max-edge", "adaptive density"}, {"--smoothing", "adaptive density"}, {"--density", "user density fields"},
-  {"--features", "the feature-preservation policy of the Poisson-disk sampler"},
 };
 
 int main(int argc, char** argv)
@@ -61,8 +63,8 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   std::string method = "poisson", report_file, svg_file;
   double vertices = 0, edge_length = 0, sharp_angle = 60;
-  unsigned long seed = 0, iterations = 5;
-  bool repair = false, self_intersections = true;
+  unsigned long seed = 0, iterations = 0;
+  bool repair = false, self_intersections = true, compare_peer = false, features = true;
   try {
     cli::Arguments args(argc, argv);
     while(!args.done()) {
@@ -77,6 +79,12 @@ int main(int argc, char** argv)
       else if(a == "--report") report_file = args.value(a);
       else if(a == "--svg") svg_file = args.value(a);
       else if(a == "--repair") repair = true;
+      else if(a == "--compare-peer") compare_peer = true;
+      else if(a == "--features") {
+        const std::string v = args.value(a);
+        if(v != "none") throw cli::Usage_error("--features takes 'none' (use --sharp-angle A for an angle)");
+        features = false;
+      }
       else if(a == "--no-self-intersections") self_intersections = false;
       else if(later_options.count(a)) {
         std::cerr << "poisson_remesh: option " << a << " belongs to " << later_options.at(a)
@@ -93,7 +101,6 @@ int main(int argc, char** argv)
     std::cerr << "poisson_remesh: " << e.what() << "\n" << usage;
     return cli::usage_error;
   }
-  (void)seed;
 
   const std::string in = files.size() > 0 ? files[0] : cli::data_mesh("meshes/fandisk.off");
   const std::string out = files.size() > 1 ? files[1]
@@ -103,13 +110,6 @@ int main(int argc, char** argv)
     std::cerr << "poisson_remesh: cannot write '" << out << "': unsupported extension (use .off .obj .ply .stl)\n";
     return cli::usage_error;
   }
-  if(method == "poisson") {
-    std::cerr << "poisson_remesh: the Poisson-disk remesher is not implemented yet (its geodesic oracle,\n"
-                 "sampler and mutual tessellation are being built); nothing was written.\n"
-                 "Use --method isotropic to run CGAL's isotropic_remeshing, the peer, at the same target.\n";
-    return cli::not_available;
-  }
-
   Mesh input, output;
   try {
     PR::Read_report rr = PR::read_surface_mesh(in, input, PR::parameters::repair_degenerate_faces(repair));
@@ -119,24 +119,49 @@ int main(int argc, char** argv)
     return cli::input_error;
   }
 
-  PR::Peers::Isotropic_remeshing_settings settings;
   const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(input));
-  settings.target_vertex_count = edge_length > 0 ? PR::vertex_count_from_edge_length(area, edge_length)
-                               : vertices > 0    ? vertices
-                                                 : double(num_vertices(input));
-  settings.sharp_angle = sharp_angle;
-  settings.iterations = unsigned(iterations);
-  std::cout << "remeshing " << in << " (" << num_vertices(input) << " vertices) with CGAL isotropic_remeshing"
-            << " (the peer) to about " << std::llround(settings.target_vertex_count) << " vertices\n";
-  PR::Peers::Isotropic_remeshing_result run = PR::Peers::isotropic_remeshing_at_vertex_count(input, output, settings);
-  std::cout << "done in " << run.seconds << " s (edge length " << run.edge_length << ", " << run.runs
-            << " calibration run(s))\n\n";
+  const double target = edge_length > 0 ? PR::vertex_count_from_edge_length(area, edge_length)
+                      : vertices > 0    ? vertices
+                                        : double(num_vertices(input));
+  auto run_peer = [&](Mesh& peer_output) {
+    PR::Peers::Isotropic_remeshing_settings settings;
+    settings.target_vertex_count = target;
+    settings.sharp_angle = features ? sharp_angle : 0;
+    settings.iterations = unsigned(iterations ? iterations : 5);
+    std::cout << "CGAL isotropic_remeshing (the peer) to about " << std::llround(target) << " vertices ... " << std::flush;
+    const PR::Peers::Isotropic_remeshing_result run = PR::Peers::isotropic_remeshing_at_vertex_count(input, peer_output, settings);
+    std::cout << run.seconds << " s (edge length " << run.edge_length << ", " << run.runs << " calibration run(s))\n";
+  };
 
   auto np = PR::parameters::check_self_intersections(self_intersections);
-  PR::Labelled_quality_reports reports = {
-    {"input", PR::quality_report(input, np)},
-    {"output (CGAL isotropic)", PR::quality_report(output, input, np)},
-  };
+  PR::Labelled_quality_reports reports = {{"input", PR::quality_report(input, np)}};
+  if(method == "poisson") {
+    std::cout << "Poisson-disk remeshing of " << in << " (" << num_vertices(input) << " vertices) to about "
+              << std::llround(target) << " vertices ... " << std::flush;
+    const PR::Poisson_remesh_result run = PR::poisson_remesh(input, output,
+      PR::parameters::target_vertex_count(std::size_t(std::llround(target)))
+        .random_seed(unsigned(seed))
+        .feature_policy(features ? PR::Feature_policy::detect : PR::Feature_policy::none)
+        .sharp_angle(sharp_angle)
+        .number_of_iterations(unsigned(iterations ? iterations : 10)));
+    std::cout << run.seconds() << " s (features " << run.seconds_features << ", sampling " << run.seconds_sampling
+              << ", tessellation " << run.seconds_tessellation << ", relaxation " << run.seconds_relaxation << ")\n"
+              << "  " << run.sampling.number_of_samples << " samples (" << run.sampling.number_of_corners << " corners, "
+              << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius << "\n";
+    if(run.number_of_leftover_input_vertices)
+      std::cout << "  note: " << run.number_of_leftover_input_vertices
+                << " input vertices could not be removed without changing the topology; they stay in the output\n";
+    reports.push_back({"output (Poisson)", PR::quality_report(output, input, np)});
+    if(compare_peer) {
+      Mesh peer;
+      run_peer(peer);
+      reports.push_back({"peer (CGAL isotropic)", PR::quality_report(peer, input, np)});
+    }
+  } else {
+    run_peer(output);
+    reports.push_back({"output (CGAL isotropic)", PR::quality_report(output, input, np)});
+  }
+  std::cout << "\n";
   PR::write_quality_table(std::cout, reports);
 
   try {

@@ -1,0 +1,103 @@
+// Poisson_remesh/poisson_remesh.h
+//
+// Entry point: poisson_remesh(input, output, np) -- the whole method of the paper:
+//   detect_features (§3) -> poisson_disk_sample (§4, features first) -> mutual_tessellation (§6.1)
+//   -> Lloyd_relaxer::relax (§6.2 local Lloyd with projection onto the input, Delaunay flips,
+//   §6.3 connectivity flips).
+// The output's vertices are the samples (moved by the relaxation, always on the input surface);
+// the output keeps the input's topology (input vertices that the tessellation could not remove
+// are reported, never silently kept).
+
+#ifndef POISSON_REMESH_POISSON_REMESH_H
+#define POISSON_REMESH_POISSON_REMESH_H
+
+#include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
+#include <Poisson_remesh/Tessellation/mutual_tessellation.h>
+#include <Poisson_remesh/parameters.h>
+#include <Poisson_remesh/poisson_disk_sample.h>
+
+#include <CGAL/Kernel_traits.h>
+
+#include <chrono>
+#include <vector>
+
+namespace Poisson_remesh {
+
+/// What poisson_remesh() did, stage by stage.
+struct Poisson_remesh_result
+{
+  Poisson_disk_sampling_result sampling;
+  std::size_t number_of_leftover_input_vertices = 0;  ///< input vertices the tessellation could not remove
+  Relaxation_statistics relaxation;
+  double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
+  double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
+};
+
+/*!
+  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first).
+
+  Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
+  `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
+  `sharp_angle`, `corner_angle`, `edge_is_constrained_map`) and `number_of_iterations` (CGAL;
+  relaxation rounds, default 10: see Relaxation_settings).
+*/
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& output,
+                                     const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type Point_3;
+  typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::edge_descriptor edge_descriptor;
+  auto now = [] { return std::chrono::steady_clock::now(); };
+  auto since = [&](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(now() - t).count(); };
+
+  Poisson_remesh_result result;
+  auto t = now();
+  const Feature_set<TriangleMesh> features = detect_features(input, np);
+  result.seconds_features = since(t);
+
+  t = now();
+  std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
+  result.sampling = poisson_disk_sample(input, std::back_inserter(samples), np);
+  result.seconds_sampling = since(t);
+
+  t = now();
+  clear(output);
+  const auto tessellation = mutual_tessellation(input, samples, features, output);
+  result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
+  result.seconds_tessellation = since(t);
+
+  t = now();
+  // what each output vertex is: corner, feature or surface sample (leftover input vertices are fixed)
+  auto vim = CGAL::get_initialized_vertex_index_map(output);
+  std::vector<int> kind(num_vertices(output), -1);
+  for(const auto& v : tessellation.vertices)
+    if(v.sample != tessellation.no_sample) kind[get(vim, v.vertex)] = int(samples[v.sample].kind);
+  Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+  auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
+  // an output feature edge joins two feature (or corner) samples along an input feature curve
+  auto is_feature = [&](edge_descriptor e) {
+    const vertex_descriptor a = source(halfedge(e, output), output), b = target(halfedge(e, output), output);
+    const int ka = kind[get(vim, a)], kb = kind[get(vim, b)];
+    if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
+    if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
+    const Point_3 mid = CGAL::midpoint(point(a), point(b));
+    const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
+    return d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b)));
+  };
+  auto is_fixed = [&](vertex_descriptor v) { const int k = kind[get(vim, v)]; return k < 0 || k == int(Sample_kind::corner); };
+  Relaxation_settings settings;
+  settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
+  result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings);
+  result.seconds_relaxation = since(t);
+  return result;
+}
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POISSON_REMESH_H

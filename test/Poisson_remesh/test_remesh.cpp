@@ -1,0 +1,93 @@
+// Tests of the whole remesher (paper §3-§6): poisson_remesh() and the Lloyd relaxer.
+#include "analytic_meshes.h"
+#include "test_support.h"
+
+#include <Poisson_remesh/poisson_remesh.h>
+#include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/read_surface_mesh.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <catch2/catch.hpp>
+
+#include <iostream>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+namespace PR = Poisson_remesh;
+
+namespace {
+
+// largest distance of an output vertex to the input surface, over the input's bbox diagonal
+double vertices_off_input(const Mesh& out, const Mesh& in)
+{
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> Tree;
+  Tree tree(faces(in).first, faces(in).second, in);
+  double worst = 0;
+  for(auto v : vertices(out)) worst = std::max(worst, std::sqrt(CGAL::to_double(tree.squared_distance(out.point(v)))));
+  return worst / PR::quality_report(in, PR::parameters::check_self_intersections(false)).bbox_diagonal;
+}
+
+} // namespace
+
+TEST_CASE("remeshed meshes keep the input's topology and lie on it", "[remesh]")
+{
+  for(const std::string name : {"meshes/fandisk.off", "meshes/elephant.off", "meshes/knot1.off"}) {
+    INFO(name);
+    Mesh in, out;
+    PR::read_surface_mesh(test_support::data_mesh(name), in);
+    const auto run = PR::poisson_remesh(in, out, PR::parameters::random_seed(3u));
+    const PR::Quality_report a = PR::quality_report(in), b = PR::quality_report(out, in);
+    std::cout << "[poisson_remesh] " << name << ": V " << b.number_of_vertices << " (input " << a.number_of_vertices
+              << "), min angle " << b.min_angle << ", mean min angle " << b.mean_min_angle << ", irregular "
+              << b.irregular_share << ", Hausdorff " << *b.hausdorff << ", self-intersecting pairs "
+              << b.number_of_self_intersecting_face_pairs << ", " << run.seconds() << " s\n";
+    CHECK(CGAL::is_valid_polygon_mesh(out));
+    CHECK(CGAL::is_closed(out));
+    CHECK(b.euler_characteristic == a.euler_characteristic);
+    CHECK(b.number_of_components == a.number_of_components);
+    CHECK(run.number_of_leftover_input_vertices <= 2);
+    CHECK(std::abs(double(b.number_of_vertices) - double(a.number_of_vertices)) <= 0.05 * a.number_of_vertices);
+    CHECK(vertices_off_input(out, in) < 1e-9);
+    CHECK(b.number_of_self_intersecting_face_pairs == 0);
+    // better triangles than the input on average, and no worse in the worst case
+    CHECK(b.mean_min_angle > 50);
+    CHECK(b.mean_min_angle > a.mean_min_angle);
+    CHECK(b.share_min_angle_below_30 < 0.01);
+    CHECK(b.irregular_share <= 0.25);
+    CHECK(*b.hausdorff < 0.01);
+  }
+}
+
+TEST_CASE("remeshing is deterministic for a given seed", "[remesh]")
+{
+  Mesh in, a, b;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), in);
+  PR::poisson_remesh(in, a, PR::parameters::target_vertex_count(800).random_seed(5u));
+  PR::poisson_remesh(in, b, PR::parameters::target_vertex_count(800).random_seed(5u));
+  REQUIRE(num_vertices(a) == num_vertices(b));
+  auto vb = vertices(b).begin();
+  for(auto v : vertices(a)) CHECK(a.point(v) == b.point(*vb++));
+}
+
+TEST_CASE("the Lloyd relaxer improves a mesh and keeps it on the input", "[remesh][relaxer]")
+{
+  const Mesh in = analytic::sphere(40, 20).to_mesh<Mesh>();  // skinny triangles at the poles
+  Mesh m = in;
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const auto stats = relaxer.relax(m, [](Mesh::Edge_index) { return false; }, [](Mesh::Vertex_index) { return false; });
+  const PR::Quality_report before = PR::quality_report(in), after = PR::quality_report(m, in);
+  CHECK(stats.moves > 0);
+  CHECK(after.mean_min_angle > before.mean_min_angle);
+  CHECK(after.min_angle > before.min_angle);
+  CHECK(after.euler_characteristic == 2);
+  CHECK(after.number_of_self_intersecting_face_pairs == 0);
+  CHECK(vertices_off_input(m, in) < 1e-9);
+}

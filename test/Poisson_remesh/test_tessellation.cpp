@@ -1,0 +1,236 @@
+// Tests of the mutual tessellation (paper §6.1): samples inserted, original vertices removed,
+// topology, corners and feature curves kept.
+#include "analytic_meshes.h"
+#include "test_support.h"
+
+#include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Tessellation/mutual_tessellation.h>
+#include <Poisson_remesh/poisson_disk_sample.h>
+#include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/read_surface_mesh.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Polyhedron_items_with_id_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+namespace PR = Poisson_remesh;
+
+template <class M>
+using Samples = std::vector<PR::Poisson_sample<M, Point>>;
+
+/// Consecutive samples along every feature curve of `fs` (on `in`), as pairs of sample indices.
+template <class M>
+std::vector<std::pair<std::size_t, std::size_t>>
+consecutive_feature_samples(const M& in, const PR::Feature_set<M>& fs, const Samples<M>& s)
+{
+  typedef typename boost::graph_traits<M>::vertex_descriptor vertex_descriptor;
+  // position of a curve point: (curve, halfedge rank + t)
+  std::map<std::pair<vertex_descriptor, vertex_descriptor>, std::pair<std::size_t, std::size_t>> rank; // (src, tgt) -> (curve, k)
+  for(std::size_t c = 0; c < fs.curves.size(); ++c)
+    for(std::size_t k = 0; k < fs.curves[c].halfedges.size(); ++k) {
+      const auto h = fs.curves[c].halfedges[k];
+      rank[{source(h, in), target(h, in)}] = {c, k};
+    }
+  std::vector<std::vector<std::pair<double, std::size_t>>> along(fs.curves.size());
+  for(std::size_t i = 0; i < s.size(); ++i) {
+    if(s[i].kind == PR::Sample_kind::surface) continue;
+    const auto h0 = halfedge(s[i].location.first, in);
+    const vertex_descriptor fv[3] = {source(h0, in), target(h0, in), target(next(h0, in), in)};
+    const auto& b = s[i].location.second;
+    for(int k = 0; k < 3; ++k)
+      for(int l = 0; l < 3; ++l) {
+        if(k == l) continue;
+        const int z = 3 - k - l;
+        if(b[z] > 1e-12) continue;
+        auto it = rank.find({fv[k], fv[l]});
+        if(it == rank.end()) continue;
+        // point = b[k] fv[k] + b[l] fv[l]: parameter along (fv[k] -> fv[l]) is b[l]
+        along[it->second.first].push_back({double(it->second.second) + b[l], i});
+      }
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for(std::size_t c = 0; c < along.size(); ++c) {
+    auto& a = along[c];
+    std::sort(a.begin(), a.end());
+    // a corner at a curve end is seen twice (end of one halfedge, start of the next): dedupe
+    a.erase(std::unique(a.begin(), a.end(), [](const auto& x, const auto& y) { return x.second == y.second; }), a.end());
+    for(std::size_t j = 1; j < a.size(); ++j) pairs.push_back({a[j - 1].second, a[j].second});
+    if(fs.curves[c].closed && a.size() > 2) pairs.push_back({a.back().second, a.front().second});
+  }
+  return pairs;
+}
+
+struct Figures
+{
+  std::size_t leftovers = 0, self_intersections = 0, unjoined_feature_pairs = 0, feature_pairs = 0;
+  std::size_t corners_kept = 0;   ///< corners of `fs` found among the output's vertex points
+};
+
+/// Samples `in` at `factor` times its vertex count, tessellates and checks §6.1's promises.
+template <class M>
+Figures tessellate_and_check(const std::string& name, const M& in, double factor,
+                             const PR::Feature_set<M>* corners_of = nullptr)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t n = std::size_t(factor * double(num_vertices(in)));
+  Samples<M> samples;
+  PR::poisson_disk_sample(in, std::back_inserter(samples), PR::parameters::target_vertex_count(n).random_seed(3u));
+  const auto fs = PR::detect_features(in);
+  const auto t1 = std::chrono::steady_clock::now();
+  M out;
+  const auto r = PR::mutual_tessellation(in, samples, fs, out);
+  const auto t2 = std::chrono::steady_clock::now();
+
+  const PR::Quality_report qin = PR::quality_report(in, PR::parameters::check_self_intersections(false));
+  const PR::Quality_report q = PR::quality_report(out);
+  Figures fig;
+  fig.leftovers = r.leftover_vertices.size();
+  fig.self_intersections = q.number_of_self_intersecting_face_pairs;
+
+  INFO(name << " x" << factor);
+  CHECK(CGAL::is_valid_polygon_mesh(out));
+  CHECK(CGAL::is_triangle_mesh(out));
+  CHECK(CGAL::is_closed(out) == CGAL::is_closed(in));
+  CHECK(q.number_of_components == qin.number_of_components);
+  CHECK(q.number_of_border_cycles == qin.number_of_border_cycles);
+  CHECK(q.euler_characteristic == qin.euler_characteristic);
+  CHECK(num_vertices(out) == samples.size() + r.leftover_vertices.size());
+  REQUIRE(r.vertices.size() == num_vertices(out));
+  for(const auto& v : r.vertices)
+    if(v.sample != r.no_sample) {
+      CHECK(get(CGAL::vertex_point, out, v.vertex) == samples[v.sample].point);
+      CHECK(r.sample_vertices[v.sample] == v.vertex);
+    }
+  std::size_t corners = 0;
+  for(const auto& s : samples) if(s.kind == PR::Sample_kind::corner) ++corners;
+  CHECK(r.number_of_vertex_samples >= corners);   // corners are input vertices, marked not inserted
+
+  if(corners_of) {
+    std::set<Point> out_points;
+    for(auto v : vertices(out)) out_points.insert(get(CGAL::vertex_point, out, v));
+    for(auto c : corners_of->corners) fig.corners_kept += out_points.count(get(CGAL::vertex_point, in, c));
+  }
+
+  // consecutive feature samples are joined by an output edge
+  for(const auto& pr : consecutive_feature_samples(in, fs, samples)) {
+    ++fig.feature_pairs;
+    if(!halfedge(r.sample_vertices[pr.first], r.sample_vertices[pr.second], out).second) ++fig.unjoined_feature_pairs;
+  }
+
+  std::cout << "[tessellation] " << name << " x" << factor << ": V in " << num_vertices(in) << ", samples "
+            << samples.size() << ", V out " << num_vertices(out) << ", leftovers " << fig.leftovers
+            << ", chi " << qin.euler_characteristic << " -> " << q.euler_characteristic
+            << ", self-intersecting pairs " << fig.self_intersections << ", flips " << r.number_of_flips << " (+" << r.number_of_repair_flips << " repair)"
+            << ", passes " << r.number_of_removal_passes << " (refused: star " << r.refused_star << ", feature edge "
+            << r.refused_feature_edge << ", pocket " << r.refused_pocket << ", triangulation " << r.refused_triangulation << ")" << ", feature pairs joined "
+            << (fig.feature_pairs - fig.unjoined_feature_pairs) << "/" << fig.feature_pairs
+            << "; min angle " << q.min_angle << ", mean min angle " << q.mean_min_angle
+            << ", irregular " << q.irregular_share << "; sampling "
+            << std::chrono::duration<double>(t1 - t0).count() << " s, tessellation "
+            << std::chrono::duration<double>(t2 - t1).count() << " s" << std::endl;
+  return fig;
+}
+
+Mesh data(const std::string& name)
+{
+  Mesh m;
+  PR::read_surface_mesh(test_support::data_mesh(name), m);
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("tessellated sphere, torus and cube keep topology, corners and samples", "[tessellation]")
+{
+  const std::vector<std::pair<std::string, Mesh>> meshes = {
+    {"sphere", analytic::sphere(24, 12).to_mesh<Mesh>()},
+    {"torus", analytic::torus(32, 16).to_mesh<Mesh>()},
+    {"cube", analytic::cube(8).to_mesh<Mesh>()}};
+  for(const auto& nm : meshes)
+    for(double factor : {1.0, 0.5}) {
+      const Figures f = tessellate_and_check(nm.first, nm.second, factor);
+      CHECK(f.leftovers == 0);
+      CHECK(f.self_intersections == 0);
+      CHECK(f.unjoined_feature_pairs == 0);
+    }
+}
+
+TEST_CASE("tessellated plane and cylinder keep their borders", "[tessellation]")
+{
+  const std::vector<std::pair<std::string, Mesh>> meshes = {
+    {"plane", analytic::plane(12, 12).to_mesh<Mesh>()},
+    {"cylinder", analytic::cylinder(24, 12).to_mesh<Mesh>()}};
+  for(const auto& nm : meshes)
+    for(double factor : {1.0, 0.5}) {
+      const Figures f = tessellate_and_check(nm.first, nm.second, factor);
+      CHECK(f.leftovers == 0);
+      CHECK(f.self_intersections == 0);
+      CHECK(f.feature_pairs > 0);
+      CHECK(f.unjoined_feature_pairs == 0);
+    }
+}
+
+TEST_CASE("tessellated fandisk joins consecutive feature samples", "[tessellation]")
+{
+  const Mesh m = data("meshes/fandisk.off");
+  const auto fs = PR::detect_features(m);
+  REQUIRE(fs.corners.size() > 0);
+  for(double factor : {1.0, 0.5}) {
+    const Figures f = tessellate_and_check("fandisk", m, factor, &fs);
+    CHECK(f.corners_kept == fs.corners.size());
+    CHECK(f.feature_pairs > 0);
+    CHECK(f.unjoined_feature_pairs == 0);
+    CHECK(f.leftovers == 0);
+    CHECK(f.self_intersections == 0);
+  }
+}
+
+TEST_CASE("tessellated elephant keeps topology with every original vertex removed", "[tessellation]")
+{
+  const Mesh m = data("meshes/elephant.off");
+  for(double factor : {1.0, 0.5}) {
+    const Figures f = tessellate_and_check("elephant", m, factor);
+    CHECK(f.leftovers == 0);
+    CHECK(f.self_intersections == 0);
+  }
+}
+
+TEST_CASE("tessellated triceratops keeps topology despite skinny input triangles", "[tessellation]")
+{
+  const Mesh m = data("meshes/triceratops.off");
+  for(double factor : {1.0, 0.5}) {
+    const Figures f = tessellate_and_check("triceratops", m, factor);
+    // Known limit (measured with seed 3): the thin horns and frill are sampled with few samples
+    // across, so a couple of original vertices cannot be removed without joining two sheets (the
+    // §6.1 check refuses them; they are reported), and a few face pairs there intersect
+    // (x1: 2 leftovers, 0 pairs after the repair flips; x0.5: 2 leftovers, 6 pairs, 4 of them
+    // at a leftover). These bounds keep it from growing.
+    CHECK(f.leftovers <= 3);
+    CHECK(f.self_intersections <= (factor < 1 ? 8u : 0u));
+  }
+}
+
+TEST_CASE("mutual tessellation runs on Polyhedron_3", "[tessellation]")
+{
+  typedef CGAL::Polyhedron_3<K, CGAL::Polyhedron_items_with_id_3> Polyhedron;
+  const Polyhedron p = analytic::cube(4).to_mesh<Polyhedron>();
+  const Figures f = tessellate_and_check("cube (Polyhedron_3)", p, 1.0);
+  CHECK(f.leftovers == 0);
+  CHECK(f.unjoined_feature_pairs == 0);
+}
