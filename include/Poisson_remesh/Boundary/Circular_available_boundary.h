@@ -276,9 +276,6 @@ public:
     return {a.face, b};
   }
 
-  const Stored_arc& stored_arc(std::size_t i) const { return arcs_[i]; }
-  std::size_t number_of_slots() const { return arcs_.size(); }
-  bool is_alive(std::size_t i) const { return alive_[i]; }
 
   /// decisions taken by crossing directions / by in_old_disks (for statistics)
   std::size_t runs_decided_by_crossings() const { return by_crossings_; }
