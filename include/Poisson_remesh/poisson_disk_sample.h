@@ -31,6 +31,10 @@ struct Poisson_disk_sampling_result
   Sampling_statistics statistics;
 };
 
+/// The default `minimum_feature_length` of the sampler and the remesher, in sampling radii r:
+/// a dangling crease shorter than two sample spacings (4r) is noise at the scale of the output.
+constexpr double feature_length_in_radii = 4.0;
+
 namespace internal {
 
 // r from the named parameters: sampling_radius, else target_edge_length (spacing 2r = edge
@@ -50,11 +54,21 @@ double sampling_radius_from_parameters(const TriangleMesh& tm, VPM vpm, const Na
   return disk_radius_from_vertex_count(area, n);
 }
 
-template <class Sampler, class TriangleMesh, class VPM, class NamedParameters>
-void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const NamedParameters& np,
+// the features as the sampler sees them at radius r: detect_features() with
+// `minimum_feature_length` defaulting to feature_length_in_radii * r
+template <class TriangleMesh, class NamedParameters>
+Feature_set<TriangleMesh> detect_features_at_radius(const TriangleMesh& tm, double r, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const double length = choose_parameter(get_parameter(np, internal_np::minimum_feature_length), feature_length_in_radii * r);
+  return detect_features(tm, Named_function_parameters<double, internal_np::minimum_feature_length_t, NamedParameters>(length, np));
+}
+
+template <class Sampler, class TriangleMesh, class VPM>
+void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
                      bool first_level, Poisson_disk_sampling_result& result)
 {
-  const Feature_set<TriangleMesh> fs = detect_features(tm, np);
   for(auto v : fs.corners) {
     // a location of the corner in one of its faces
     auto h = halfedge(v, tm);
@@ -65,6 +79,26 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Na
   for(const auto& s : feature_sample_locations(tm, vpm, fs, 2 * sampler.radius()))
     if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
 }
+
+// poisson_disk_sample() with the features already detected (the remesher shares them with the
+// tessellation)
+template <class TriangleMesh, class VPM, class OutputIterator>
+Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
+                                                 double radius, unsigned int seed, OutputIterator out)
+{
+  Poisson_disk_sampling_result result;
+  result.radius = radius;
+  Boundary_sampler<TriangleMesh, VPM> sampler(tm, vpm, seed);
+  sampler.set_radius(result.radius);
+  internal::sample_features(sampler, tm, vpm, fs, true, result);
+  sampler.seed_components();
+  sampler.fill();
+  for(const auto& s : sampler.samples()) *out++ = s;
+  result.number_of_samples = sampler.samples().size();
+  result.statistics = sampler.statistics();
+  return result;
+}
+
 
 } // namespace internal
 
@@ -77,7 +111,8 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Na
     (r from Eq. 1 with rho = 0.844); default: the input's vertex count
   - `random_seed` (CGAL, default 0): the same seed gives the same samples
   - features: `feature_policy` (default Feature_policy::detect), `sharp_angle` (60),
-    `corner_angle` (60), `edge_is_constrained_map` (CGAL; implies Feature_policy::user_map)
+    `corner_angle` (60), `minimum_feature_length` (default feature_length_in_radii * r),
+    `edge_is_constrained_map` (CGAL; implies Feature_policy::user_map)
   - `vertex_point_map` (CGAL)
 */
 template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
@@ -92,16 +127,9 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputI
 
   Poisson_disk_sampling_result result;
   result.radius = internal::sampling_radius_from_parameters(tm, vpm, np);
-  Boundary_sampler<TriangleMesh, decltype(vpm)> sampler(tm, vpm, seed);
-  sampler.set_radius(result.radius);
-  internal::sample_features(sampler, tm, vpm, np, true, result);
-  sampler.seed_components();
-  sampler.fill();
-  for(const auto& s : sampler.samples()) *out++ = s;
-  result.number_of_samples = sampler.samples().size();
-  result.statistics = sampler.statistics();
-  return result;
+  return internal::poisson_disk_sample(tm, vpm, internal::detect_features_at_radius(tm, result.radius, np), result.radius, seed, out);
 }
+
 
 /*!
   progressive multi-level sampling (§8): one maximal set per radius of `radii` (decreasing), each
@@ -128,7 +156,7 @@ poisson_disk_sample_levels(const TriangleMesh& tm, const std::vector<double>& ra
     Poisson_disk_sampling_result result;
     result.radius = r;
     sampler.set_radius(r);
-    internal::sample_features(sampler, tm, vpm, np, results.empty(), result);
+    internal::sample_features(sampler, tm, vpm, internal::detect_features_at_radius(tm, r, np), results.empty(), result);
     sampler.seed_components();
     sampler.fill();
     result.number_of_samples = sampler.samples().size();

@@ -57,18 +57,23 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   auto since = [&](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(now() - t).count(); };
 
   Poisson_remesh_result result;
+  auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
+  if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
   auto t = now();
-  const Feature_set<TriangleMesh> features = detect_features(input, np);
+  const double radius = internal::sampling_radius_from_parameters(input, in_vpm, np);
+  // one feature set for the sampler and the tessellation
+  const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   result.seconds_features = since(t);
 
   t = now();
   std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
-  result.sampling = poisson_disk_sample(input, std::back_inserter(samples), np);
+  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples));
   result.seconds_sampling = since(t);
 
   t = now();
   clear(output);
-  const auto tessellation = mutual_tessellation(input, samples, features, output);
+  const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
   result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
   result.seconds_tessellation = since(t);
 

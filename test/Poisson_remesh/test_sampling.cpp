@@ -24,6 +24,7 @@ typedef K::Point_3 Point;
 typedef CGAL::Surface_mesh<Point> Mesh;
 namespace PR = Poisson_remesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
+typedef PR::Poisson_sample<Mesh, Point> Sample_of_mesh;
 
 TEST_CASE("features of a cube: 8 corners, 12 straight curves", "[features]")
 {
@@ -130,6 +131,61 @@ TEST_CASE("features of fandisk: sharp creases kept, short dangling chains remove
     for(std::size_t i = 1; i < c.halfedges.size(); ++i) CHECK(target(c.halfedges[i - 1], m) == source(c.halfedges[i], m));
   }
   CHECK(edges_in_curves == fs.number_of_feature_edges);
+}
+
+TEST_CASE("features at the sampling scale: fandisk keeps every crease, noisy organic meshes lose false ones", "[features]")
+{
+  // r of a remesh at the input's vertex count, and the sampler's default minimum feature length
+  auto scale_of = [](const Mesh& m) {
+    return PR::internal::sampling_radius_from_parameters(m, get(CGAL::vertex_point, m), PR::parameters::default_values());
+  };
+  Mesh fandisk;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/fandisk.off"), fandisk);
+  const auto plain = PR::detect_features(fandisk);
+  const auto scaled = PR::detect_features(fandisk, PR::parameters::minimum_feature_length(PR::feature_length_in_radii * scale_of(fandisk)));
+  CHECK(scaled.number_of_feature_edges == plain.number_of_feature_edges);
+  CHECK(scaled.corners.size() == plain.corners.size());
+  CHECK(scaled.number_of_tips == 0);
+  for(auto e : edges(fandisk)) CHECK(scaled.is_feature(e) == plain.is_feature(e));
+
+  for(const std::string name : {"meshes/femur.off", "meshes/bull.off"}) {
+    INFO(name);
+    Mesh m;
+    PR::read_surface_mesh(test_support::data_mesh(name), m);
+    const double r = scale_of(m);
+    const auto raw = PR::detect_features(m);
+    const auto fs = PR::detect_features(m, PR::parameters::minimum_feature_length(PR::feature_length_in_radii * r));
+    std::cout << "[features] " << name << ": corners " << raw.corners.size() << " -> " << fs.corners.size()
+              << " (tips " << fs.number_of_tips << "), feature edges " << raw.number_of_feature_edges << " -> "
+              << fs.number_of_feature_edges << "\n";
+    CHECK(fs.corners.size() - fs.number_of_tips < raw.corners.size() / 2);
+    CHECK(fs.number_of_feature_edges < raw.number_of_feature_edges);
+    // no curve between two corners is shorter than the scale r; corners other than tips are on features
+    for(const auto& c : fs.curves) if(!c.border && !c.closed) CHECK(c.length >= r);
+  }
+}
+
+TEST_CASE("a pointed tip is a corner at the sampling scale, a smooth sphere has none", "[features]")
+{
+  const Mesh cone = analytic::cone(32, 8).to_mesh<Mesh>();   // apex (0, 0, 1), half-angle 45 degrees
+  const auto plain = PR::detect_features(cone);
+  const auto fs = PR::detect_features(cone, PR::parameters::minimum_feature_length(0.4));
+  Mesh::Vertex_index apex;
+  for(auto v : vertices(cone)) if(cone.point(v) == Point(0, 0, 1)) apex = v;
+  REQUIRE(apex != Mesh::null_vertex());
+  CHECK(!plain.is_corner(apex));
+  CHECK(fs.is_corner(apex));
+  CHECK(fs.number_of_tips == 1);
+  // the sampler keeps it: the apex is a corner sample
+  std::vector<Sample_of_mesh> samples;
+  PR::poisson_disk_sample(cone, std::back_inserter(samples), PR::parameters::sampling_radius(0.1).random_seed(2u));
+  std::size_t at_apex = 0;
+  for(const auto& s : samples)
+    if(CGAL::squared_distance(s.point, Point(0, 0, 1)) < 1e-20) { ++at_apex; CHECK(s.kind == PR::Sample_kind::corner); }
+  CHECK(at_apex == 1);
+
+  const Mesh sphere = analytic::sphere(48, 24).to_mesh<Mesh>();
+  CHECK(PR::detect_features(sphere, PR::parameters::minimum_feature_length(0.4)).number_of_tips == 0);
 }
 
 // ------------------------------------------------------------------ Poisson-disk sampling

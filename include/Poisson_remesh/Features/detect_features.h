@@ -6,7 +6,11 @@
 //      user's `edge_is_constrained_map`, or none -- the feature-preservation policy;
 //   2. false features removed, in the spirit of Jiao and Heath (2002): feature chains that dangle
 //      (one end not attached to any other feature) and are made of fewer than
-//      `dangling_chain_min_edges` edges are noise, not creases, and are dropped, repeatedly;
+//      `dangling_chain_min_edges` edges, or shorter than `minimum_feature_length`, are noise, not
+//      creases, and are dropped, repeatedly; so are closed feature loops shorter than it. The
+//      sampler and the remesher set that length from the sampling radius (a crease shorter than
+//      two sample spacings cannot be represented by the output's edges anyway), which removes
+//      the hundreds of false "features" a 60 degree threshold finds on coarse organic models;
 //   3. mesh borders are always feature curves (whatever the policy: the remesh keeps them);
 //   4. corners: vertices where the feature graph branches or ends (feature degree != 2), and
 //      vertices of degree 2 where the curve turns by more than `corner_angle`;
@@ -41,6 +45,11 @@ enum class Feature_policy {
 
 /// Feature chains dangling with fewer edges than this are noise (step 2 above).
 constexpr std::size_t dangling_chain_min_edges = 3;
+/// `minimum_feature_length` over the scale s at which corners are measured and short curves
+/// between corners dropped (s = r when the sampler sets the length to 4r).
+constexpr double feature_length_in_radii_ratio = 4.0;
+/// A vertex is a tip (step 6) when the angle defect summed within the scale exceeds this (radians).
+constexpr double tip_angle_defect = 0.5 * CGAL_PI;
 
 template <class TriangleMesh>
 struct Feature_set
@@ -64,6 +73,7 @@ struct Feature_set
   std::vector<Curve> curves;
   std::size_t number_of_feature_edges = 0;
   std::size_t number_of_removed_false_features = 0;  ///< edges dropped by the filtering
+  std::size_t number_of_tips = 0;                    ///< corners that are pointed tips (step 6)
 
   bool is_feature(edge_descriptor e) const { return feature_edge[get(eim, e)]; }
   bool is_corner(vertex_descriptor v) const { return corner[get(vim, v)]; }
@@ -95,6 +105,9 @@ double edge_length(typename boost::graph_traits<TriangleMesh>::halfedge_descript
     (and, if given, implies `user_map` when no policy is named)
   - `corner_angle` (degrees, default 60): a feature vertex of degree 2 is a corner when its two
     feature edges turn by more than this
+  - `minimum_feature_length` (length, default 0: off): dangling feature chains and closed
+    feature loops shorter than this are false features (borders are always kept).
+    poisson_disk_sample() and poisson_remesh() default it to `feature_length_in_radii` times r.
   - `vertex_point_map` (CGAL)
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
@@ -115,6 +128,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
                                                  has_user_map ? Feature_policy::user_map : Feature_policy::detect);
   const double sharp_angle = choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0);
   const double corner_angle = choose_parameter(get_parameter(np, internal_np::corner_angle), 60.0);
+  const double min_length = choose_parameter(get_parameter(np, internal_np::minimum_feature_length), 0.0);
 
   Features fs;
   fs.eim = CGAL::get_initialized_edge_index_map(tm);
@@ -141,6 +155,59 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
     }
   }
 
+  const double scale = min_length / feature_length_in_radii_ratio;
+  // 1b. with a scale s, a detected edge is a crease only if it is sharp at that scale: the faces
+  // within s of its midpoint, reached from either side without crossing a feature edge, stay
+  // apart, and their mean normals still make more than half of sharp_angle. A dihedral spike of a
+  // coarse or noisy organic mesh is not (Jiao and Heath: features are judged on a neighbourhood).
+  if(scale > 0 && policy == Feature_policy::detect) {
+    typedef typename GT::face_descriptor face_descriptor;
+    // (a dynamic map: the face ids of a const Polyhedron_3 may not be initialized)
+    auto stamp = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
+    for(face_descriptor f : faces(tm)) put(stamp, f, std::size_t(0));
+    std::size_t visit = 0;
+    std::vector<bool> keep(num_edges(tm), true);
+    const double cos_half = std::cos(0.5 * sharp_angle * CGAL_PI / 180.0);
+    for(edge_descriptor e : edges(tm)) {
+      if(!fs.feature_edge[eidx(e)] || border_edge[eidx(e)]) continue;
+      const halfedge_descriptor h = halfedge(e, tm);
+      const auto mid = CGAL::midpoint(get(vpm, source(h, tm)), get(vpm, target(h, tm)));
+      typename boost::property_traits<decltype(vpm)>::value_type::R::Vector_3 n[2];
+      bool met = false;
+      ++visit;
+      for(int side = 0; side < 2 && !met; ++side) {
+        const face_descriptor f0 = face(side == 0 ? h : opposite(h, tm), tm);
+        const std::size_t mark = 2 * visit + std::size_t(side);
+        std::vector<face_descriptor> stack{f0};
+        put(stamp, f0, mark);
+        n[side] = CGAL::NULL_VECTOR;
+        while(!stack.empty() && !met) {
+          const face_descriptor f = stack.back();
+          stack.pop_back();
+          const halfedge_descriptor hf = halfedge(f, tm);
+          const auto a = get(vpm, source(hf, tm)), b = get(vpm, target(hf, tm)), c = get(vpm, target(next(hf, tm), tm));
+          n[side] = n[side] + 0.5 * CGAL::cross_product(b - a, c - a);
+          for(halfedge_descriptor g : CGAL::halfedges_around_face(hf, tm)) {
+            if(fs.feature_edge[eidx(edge(g, tm))] || border_edge[eidx(edge(g, tm))]) continue;
+            const face_descriptor fo = face(opposite(g, tm), tm);
+            const std::size_t st = get(stamp, fo);
+            if(st == mark) continue;
+            if(st == 2 * visit) { met = true; break; }   // reached the other side's start region
+            if(CGAL::to_double(CGAL::squared_distance(get(vpm, target(g, tm)), mid)) > scale * scale &&
+               CGAL::to_double(CGAL::squared_distance(get(vpm, source(g, tm)), mid)) > scale * scale) continue;
+            put(stamp, fo, mark);
+            stack.push_back(fo);
+          }
+        }
+      }
+      if(met) { keep[eidx(e)] = false; continue; }
+      const double l0 = std::sqrt(CGAL::to_double(n[0].squared_length())), l1 = std::sqrt(CGAL::to_double(n[1].squared_length()));
+      if(!(l0 > 0 && l1 > 0) || CGAL::to_double(n[0] * n[1]) / (l0 * l1) > cos_half) keep[eidx(e)] = false;
+    }
+    for(edge_descriptor e : edges(tm))
+      if(fs.feature_edge[eidx(e)] && !keep[eidx(e)]) { fs.feature_edge[eidx(e)] = false; ++fs.number_of_removed_false_features; }
+  }
+
   // 2. remove dangling short chains of sharp (non-border) edges, until none is left
   std::vector<std::size_t> degree(num_vertices(tm), 0);
   auto feature_or_border = [&](edge_descriptor e) { return fs.feature_edge[eidx(e)] || border_edge[eidx(e)]; };
@@ -152,79 +219,223 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
       if(edge(g, tm) != edge(h, tm) && feature_or_border(edge(g, tm))) return g;
     return GT::null_halfedge();
   };
-  bool removed = true;
-  while(removed) {
-    removed = false;
-    for(vertex_descriptor v : vertices(tm)) {
-      if(degree[vidx(v)] != 1) continue;
-      // walk from the free end through degree-2 vertices
-      std::vector<halfedge_descriptor> chain;
-      halfedge_descriptor h = GT::null_halfedge();
-      for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
-        if(feature_or_border(edge(g, tm))) { h = g; break; }
-      bool has_border = false;
-      while(h != GT::null_halfedge() && chain.size() < dangling_chain_min_edges) {
-        chain.push_back(h);
-        has_border = has_border || border_edge[eidx(edge(h, tm))];
-        if(degree[vidx(target(h, tm))] != 2) break;
-        h = next_feature_halfedge(h);
-      }
-      if(has_border || chain.size() >= dangling_chain_min_edges) continue;
-      for(halfedge_descriptor g : chain) {
-        fs.feature_edge[eidx(edge(g, tm))] = false;
-        --degree[vidx(source(g, tm))];
-        --degree[vidx(target(g, tm))];
-        ++fs.number_of_removed_false_features;
-      }
-      removed = true;
+  auto remove_chain = [&](const std::vector<halfedge_descriptor>& chain) {
+    for(halfedge_descriptor g : chain) {
+      fs.feature_edge[eidx(edge(g, tm))] = false;
+      --degree[vidx(source(g, tm))];
+      --degree[vidx(target(g, tm))];
+      ++fs.number_of_removed_false_features;
     }
-  }
+  };
+  // 2a. dangling chains: fewer than dangling_chain_min_edges edges, or shorter than min_length
+  auto remove_dangling_chains = [&] {
+    bool removed = true;
+    while(removed) {
+      removed = false;
+      for(vertex_descriptor v : vertices(tm)) {
+        if(degree[vidx(v)] != 1) continue;
+        // walk from the free end through degree-2 vertices to the next node
+        std::vector<halfedge_descriptor> chain;
+        halfedge_descriptor h = GT::null_halfedge();
+        for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
+          if(feature_or_border(edge(g, tm))) { h = g; break; }
+        bool has_border = false;
+        double length = 0;
+        while(h != GT::null_halfedge()) {
+          chain.push_back(h);
+          length += internal::edge_length(h, tm, vpm);
+          has_border = has_border || border_edge[eidx(edge(h, tm))];
+          if(degree[vidx(target(h, tm))] != 2 || target(h, tm) == v) break;
+          h = next_feature_halfedge(h);
+        }
+        if(has_border || (chain.size() >= dangling_chain_min_edges && length >= min_length)) continue;
+        remove_chain(chain);
+        removed = true;
+      }
+    }
+  };
+  // 2b. closed loops of degree-2 vertices shorter than min_length
+  auto remove_short_loops = [&] {
+    if(!(min_length > 0)) return;
+    std::vector<bool> seen(num_edges(tm), false);
+    for(edge_descriptor e : edges(tm)) {
+      if(!fs.feature_edge[eidx(e)] || border_edge[eidx(e)] || seen[eidx(e)]) continue;
+      std::vector<halfedge_descriptor> chain;
+      double length = 0;
+      bool loop = true;
+      halfedge_descriptor h = halfedge(e, tm);
+      do {
+        chain.push_back(h);
+        seen[eidx(edge(h, tm))] = true;
+        length += internal::edge_length(h, tm, vpm);
+        if(degree[vidx(target(h, tm))] != 2 || border_edge[eidx(edge(h, tm))]) { loop = false; break; }
+        h = next_feature_halfedge(h);
+      } while(h != GT::null_halfedge() && edge(h, tm) != e);
+      if(loop && h != GT::null_halfedge() && length < min_length) remove_chain(chain);
+    }
+  };
+
+  // 4. corners: feature degree != 2, or a turn sharper than corner_angle. With a scale s (from
+  // min_length) the turn is measured between the points s away along the curve on both sides, a
+  // corner must turn more than its neighbours within s, and it is not within s of a node: the
+  // zig-zags of a noisy crease are not corners at the scale of the output.
+  const double cos_corner = std::cos(corner_angle * CGAL_PI / 180.0);
+  // from v along its feature halfedge g: the point at arc length >= scale (or the next node), the
+  // largest turn met on the way (`turn` indexed by vertex), whether a node was met
+  auto walk = [&](halfedge_descriptor g, const std::vector<double>* turn, double& best, std::size_t& best_index, bool& node) {
+    double length = 0;
+    node = false;
+    const halfedge_descriptor g0 = g;
+    while(true) {
+      length += internal::edge_length(g, tm, vpm);
+      const vertex_descriptor w = target(g, tm);
+      if(degree[vidx(w)] != 2) { node = true; return w; }
+      if(turn && ((*turn)[vidx(w)] > best || ((*turn)[vidx(w)] == best && vidx(w) < best_index))) { best = (*turn)[vidx(w)]; best_index = vidx(w); }
+      if(length >= scale) return w;
+      g = next_feature_halfedge(g);
+      if(g == GT::null_halfedge() || g == g0) return w;   // (a loop shorter than the scale)
+    }
+  };
+  auto find_corners = [&] {
+    fs.corners.clear();
+    std::fill(fs.corner.begin(), fs.corner.end(), false);
+    std::vector<double> turn(num_vertices(tm), -1);   // cosine of the angle between the two sides, negated
+    for(vertex_descriptor v : vertices(tm)) {
+      if(degree[vidx(v)] != 2) continue;
+      std::vector<halfedge_descriptor> fe;
+      for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
+        if(feature_or_border(edge(g, tm))) fe.push_back(g);
+      double unused = 0;
+      std::size_t unused_index = 0;
+      bool node = false;
+      const auto p = get(vpm, v);
+      const auto a = get(vpm, walk(fe[0], nullptr, unused, unused_index, node)) - p;
+      const auto b = get(vpm, walk(fe[1], nullptr, unused, unused_index, node)) - p;
+      const double la = std::sqrt(CGAL::to_double(a * a)), lb = std::sqrt(CGAL::to_double(b * b));
+      // turning angle = 180 - angle(a, b): larger turn, larger value
+      turn[vidx(v)] = la > 0 && lb > 0 ? CGAL::to_double(a * b) / (la * lb) : 1;
+    }
+    for(vertex_descriptor v : vertices(tm)) {
+      const std::size_t d = degree[vidx(v)];
+      if(d == 0) continue;
+      bool is_corner = d != 2;
+      if(!is_corner && turn[vidx(v)] > -cos_corner) {   // turns by more than corner_angle
+        is_corner = true;
+        if(scale > 0)
+          for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm)) {
+            if(!feature_or_border(edge(g, tm))) continue;
+            double best = turn[vidx(v)];
+            std::size_t best_index = vidx(v);
+            bool node = false;
+            walk(g, &turn, best, best_index, node);
+            if(node || best_index != vidx(v)) is_corner = false;
+          }
+      }
+      if(is_corner) { fs.corner[vidx(v)] = true; fs.corners.push_back(v); }
+    }
+  };
+
+  // 5. curves: from every corner along each feature edge, then the remaining closed loops
+  auto trace_curves = [&] {
+    fs.curves.clear();
+    std::vector<bool> used(num_edges(tm), false);
+    auto trace = [&](halfedge_descriptor start) {
+      typename Features::Curve c;
+      halfedge_descriptor h = start;
+      do {
+        c.halfedges.push_back(h);
+        used[eidx(edge(h, tm))] = true;
+        c.border = c.border || border_edge[eidx(edge(h, tm))];
+        c.length += internal::edge_length(h, tm, vpm);
+        if(fs.corner[vidx(target(h, tm))]) break;
+        h = next_feature_halfedge(h);
+      } while(h != GT::null_halfedge() && h != start && !used[eidx(edge(h, tm))]);
+      c.closed = !fs.corner[vidx(target(c.halfedges.back(), tm))] && target(c.halfedges.back(), tm) == source(start, tm);
+      fs.curves.push_back(std::move(c));
+    };
+    for(vertex_descriptor v : fs.corners)
+      for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
+        if(fs.feature_edge[eidx(edge(g, tm))] && !used[eidx(edge(g, tm))]) trace(g);
+    for(edge_descriptor e : edges(tm))
+      if(fs.feature_edge[eidx(e)] && !used[eidx(e)]) trace(halfedge(e, tm));
+  };
 
   // 3. borders are features
   for(edge_descriptor e : edges(tm)) if(border_edge[eidx(e)]) fs.feature_edge[eidx(e)] = true;
+  // 2-5 until stable: a curve between two corners shorter than the scale cannot be an edge of the
+  // output (it would pin a sliver) and is dropped, which may leave new dangling chains
+  while(true) {
+    remove_dangling_chains();
+    remove_short_loops();
+    find_corners();
+    trace_curves();
+    bool dropped = false;
+    if(scale > 0)
+      for(const auto& c : fs.curves)
+        if(!c.border && !c.closed && c.length < scale) { remove_chain(c.halfedges); dropped = true; }
+    if(!dropped) break;
+  }
   for(edge_descriptor e : edges(tm)) if(fs.feature_edge[eidx(e)]) ++fs.number_of_feature_edges;
 
-  // 4. corners
-  const double cos_corner = std::cos(corner_angle * CGAL_PI / 180.0);
-  for(vertex_descriptor v : vertices(tm)) {
-    const std::size_t d = degree[vidx(v)];
-    if(d == 0) continue;
-    bool is_corner = d != 2;
-    if(!is_corner) {
-      std::vector<halfedge_descriptor> fe;
-      for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
-        if(fs.feature_edge[eidx(edge(g, tm))]) fe.push_back(g);
-      const auto p = get(vpm, v);
-      const auto a = get(vpm, target(fe[0], tm)) - p, b = get(vpm, target(fe[1], tm)) - p;
-      const double la = std::sqrt(CGAL::to_double(a * a)), lb = std::sqrt(CGAL::to_double(b * b));
-      // turning angle = 180 - angle(a, b); corner when turning > corner_angle
-      const double cos_between = la > 0 && lb > 0 ? CGAL::to_double(a * b) / (la * lb) : -1;
-      is_corner = -cos_between < cos_corner;
+  // 6. tips: with a scale s and sharp features detected, the points where the surface is pointed
+  // at that scale (a horn, a claw: the angle defect summed within s is over tip_angle_defect) are
+  // corners too, so that the output keeps them (Jiao and Heath's cone points)
+  if(scale > 0 && policy == Feature_policy::detect) {
+    std::vector<double> defect(num_vertices(tm), 0);
+    for(vertex_descriptor v : vertices(tm)) {
+      if(is_border(v, tm)) continue;
+      double sum = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(v, tm)) {
+        const auto p = get(vpm, v);
+        const auto a = get(vpm, source(h, tm)) - p, b = get(vpm, target(next(h, tm), tm)) - p;
+        sum += std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(a, b).squared_length())), CGAL::to_double(a * b));
+      }
+      defect[vidx(v)] = 2 * CGAL_PI - sum;
     }
-    if(is_corner) { fs.corner[vidx(v)] = true; fs.corners.push_back(v); }
+    std::vector<std::pair<double, vertex_descriptor>> candidates;
+    std::vector<std::size_t> stamp(num_vertices(tm), 0);
+    std::size_t visit = 0;
+    std::vector<vertex_descriptor> stack;
+    auto ball = [&](vertex_descriptor v, auto&& f) {   // vertices within s of v, through edges
+      ++visit;
+      stack.assign(1, v);
+      stamp[vidx(v)] = visit;
+      const auto p = get(vpm, v);
+      while(!stack.empty()) {
+        const vertex_descriptor w = stack.back();
+        stack.pop_back();
+        f(w);
+        for(halfedge_descriptor h : CGAL::halfedges_around_target(w, tm)) {
+          const vertex_descriptor x = source(h, tm);
+          if(stamp[vidx(x)] == visit) continue;
+          stamp[vidx(x)] = visit;
+          if(CGAL::to_double(CGAL::squared_distance(get(vpm, x), p)) <= scale * scale) stack.push_back(x);
+        }
+      }
+    };
+    for(vertex_descriptor v : vertices(tm)) {
+      if(defect[vidx(v)] <= 0 || fs.corner[vidx(v)]) continue;
+      double sum = 0;
+      bool pointiest = true;
+      ball(v, [&](vertex_descriptor w) {
+        sum += defect[vidx(w)];
+        if(defect[vidx(w)] > defect[vidx(v)] || (defect[vidx(w)] == defect[vidx(v)] && vidx(w) < vidx(v))) pointiest = false;
+      });
+      if(pointiest && sum > tip_angle_defect) candidates.push_back({sum, v});
+    }
+    // the pointiest first; no two tips (nor a tip and a corner) closer than 2s
+    std::sort(candidates.begin(), candidates.end(), [&](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && vidx(a.second) < vidx(b.second)); });
+    for(const auto& c : candidates) {
+      const auto p = get(vpm, c.second);
+      bool free = true;
+      for(vertex_descriptor w : fs.corners)
+        if(CGAL::to_double(CGAL::squared_distance(get(vpm, w), p)) < 4 * scale * scale) { free = false; break; }
+      if(!free) continue;
+      fs.corner[vidx(c.second)] = true;
+      fs.corners.push_back(c.second);
+      ++fs.number_of_tips;
+    }
   }
-
-  // 5. curves: from every corner along each feature edge, then the remaining closed loops
-  std::vector<bool> used(num_edges(tm), false);
-  auto trace = [&](halfedge_descriptor start) {
-    typename Features::Curve c;
-    halfedge_descriptor h = start;
-    do {
-      c.halfedges.push_back(h);
-      used[eidx(edge(h, tm))] = true;
-      c.border = c.border || border_edge[eidx(edge(h, tm))];
-      c.length += internal::edge_length(h, tm, vpm);
-      if(fs.corner[vidx(target(h, tm))]) break;
-      h = next_feature_halfedge(h);
-    } while(h != GT::null_halfedge() && h != start && !used[eidx(edge(h, tm))]);
-    c.closed = !fs.corner[vidx(target(c.halfedges.back(), tm))] && target(c.halfedges.back(), tm) == source(start, tm);
-    fs.curves.push_back(std::move(c));
-  };
-  for(vertex_descriptor v : fs.corners)
-    for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm))
-      if(fs.feature_edge[eidx(edge(g, tm))] && !used[eidx(edge(g, tm))]) trace(g);
-  for(edge_descriptor e : edges(tm))
-    if(fs.feature_edge[eidx(e)] && !used[eidx(e)]) trace(halfedge(e, tm));
   return fs;
 }
 

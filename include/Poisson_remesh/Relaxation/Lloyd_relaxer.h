@@ -49,13 +49,21 @@ struct Relaxation_settings
   double max_flip_normal_change = 35;      ///< degrees between the old and the new triangles' normals
   /// a valence flip may not make the smallest angle of its two triangles worse than this ratio
   /// (0.3: regularity first, the Lloyd passes that follow repair the angles; 0 lets slivers through)
-  double valence_flip_min_angle_ratio = 0.3;
+  double valence_flip_min_angle_ratio = 0.6;
   bool final_delaunay = true;              ///< end with Delaunay flips (after the last Lloyd pass)
+  /// (beyond the paper) collapse the short edge of a triangle sharper than `sliver_angle` whose
+  /// shortest edge is under `sliver_edge_ratio` of its longest, onto its more constrained end,
+  /// then relax `rounds_after_collapse` more rounds: the slivers pinned by corners and feature
+  /// samples that no vertex move can mend
+  bool collapse_slivers = true;
+  double sliver_angle = 30;
+  double sliver_edge_ratio = 0.45;
+  unsigned int rounds_after_collapse = 3;
 };
 
 struct Relaxation_statistics
 {
-  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0;
+  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0;
 };
 
 template <class InputMesh, class GeomTraits>
@@ -95,6 +103,12 @@ public:
       if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
       if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
     }
+    if(s.collapse_slivers && collapse_pass(mesh, is_feature, is_corner, s, stats) > 0)
+      for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) {
+        lloyd_pass(mesh, is_feature, is_corner, stats);
+        if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
+        if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
+      }
     // end on geometry: a last Lloyd pass and Delaunay flips
     lloyd_pass(mesh, is_feature, is_corner, stats);
     if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
@@ -306,6 +320,90 @@ private:
       CGAL::Euler::flip_edge(h, m);
       ++stats.valence_flips;
     }
+  }
+
+  // what a vertex may do: 2 fixed (a corner, or where features meet), 1 slide on a feature, 0 free
+  template <class Mesh, class IsFeatureEdge, class IsCorner>
+  int constraint(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner) const
+  {
+    if(is_corner(v)) return 2;
+    const std::size_t fd = feature_degree(v, m, is_feature);
+    return fd == 0 ? 0 : fd == 2 ? 1 : 2;
+  }
+
+  template <class Mesh, class IsFeatureEdge, class IsCorner>
+  std::size_t collapse_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s, Relaxation_statistics& stats) const
+  {
+    typedef boost::graph_traits<Mesh> GT;
+    typedef typename GT::vertex_descriptor vertex_descriptor;
+    auto vpm = get(CGAL::vertex_point, m);
+    const double sliver = s.sliver_angle * CGAL_PI / 180;
+    auto min_angle = [&](const Point_3& a, const Point_3& b, const Point_3& c) {
+      return std::min({angle(b, a, c), angle(a, b, c), angle(a, c, b)});
+    };
+    // the short edges of the slivers, shortest first
+    std::vector<std::pair<double, std::pair<vertex_descriptor, vertex_descriptor>>> candidates;
+    for(auto f : faces(m)) {
+      const auto h = halfedge(f, m);
+      const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
+      const Point_3 p[3] = {get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])};
+      if(min_angle(p[0], p[1], p[2]) >= sliver) continue;
+      double l[3];
+      for(int i = 0; i < 3; ++i) l[i] = std::sqrt(CGAL::to_double(CGAL::squared_distance(p[i], p[(i + 1) % 3])));
+      const int k = int(std::min_element(l, l + 3) - l);
+      if(l[k] < s.sliver_edge_ratio * std::max({l[0], l[1], l[2]})) candidates.push_back({l[k], {v[k], v[(k + 1) % 3]}});
+    }
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<vertex_descriptor> removed;
+    std::size_t done = 0;
+    for(const auto& c : candidates) {
+      vertex_descriptor a = c.second.first, b = c.second.second;
+      if(std::find(removed.begin(), removed.end(), a) != removed.end() || std::find(removed.begin(), removed.end(), b) != removed.end()) continue;
+      const auto ab = halfedge(a, b, m);
+      if(!ab.second) continue;
+      const auto e = edge(ab.first, m);
+      const int ca = constraint(a, m, is_feature, is_corner), cb = constraint(b, m, is_feature, is_corner);
+      if(ca < cb) std::swap(a, b);   // a is kept, b goes
+      const int cr = std::min(ca, cb);
+      if(cr == 2) continue;                          // two fixed ends
+      if(cr == 1 && !is_feature(e) && !is_border(e, m)) continue;   // a feature vertex leaves only along its curve
+      if(!CGAL::Euler::does_satisfy_link_condition(e, m)) continue;
+      const auto hba = halfedge(b, a, m).first;
+      bool ok = true;
+      for(auto g : {hba, opposite(hba, m)})
+        if(!is_border(g, m) && degree(target(next(g, m), m), m) <= 3) ok = false;
+      if(!ok) continue;
+      // the faces around b take a's place: no fold, and a better smallest angle around
+      const Point_3 pa = get(vpm, a);
+      double before = CGAL_PI, after = CGAL_PI;
+      for(vertex_descriptor x : {a, b})
+        for(auto g : CGAL::halfedges_around_target(x, m)) {
+          if(is_border(g, m)) continue;
+          before = std::min(before, min_angle(get(vpm, source(g, m)), get(vpm, x), get(vpm, target(next(g, m), m))));
+        }
+      for(auto g : CGAL::halfedges_around_target(b, m)) {
+        if(is_border(g, m)) continue;
+        const vertex_descriptor x = source(g, m), y = target(next(g, m), m);
+        if(x == a || y == a) continue;   // one of the two faces that go
+        const Point_3 px = get(vpm, x), py = get(vpm, y);
+        if(cos_between(normal(px, get(vpm, b), py), normal(px, pa, py)) < 0.5) { ok = false; break; }
+        after = std::min(after, min_angle(px, pa, py));
+      }
+      if(!ok) continue;
+      for(auto g : CGAL::halfedges_around_target(a, m)) {
+        if(is_border(g, m)) continue;
+        const vertex_descriptor x = source(g, m), y = target(next(g, m), m);
+        if(x == b || y == b) continue;
+        after = std::min(after, min_angle(get(vpm, x), pa, get(vpm, y)));
+      }
+      if(!(after > before)) continue;
+      const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(hba, m), m);
+      put(vpm, kept, pa);
+      removed.push_back(b);
+      ++done;
+    }
+    stats.collapses += done;
+    return done;
   }
 
 public:

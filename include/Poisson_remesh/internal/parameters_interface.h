@@ -14,6 +14,7 @@ POISSON_REMESH_add_named_parameter(density_t, density, density)
 POISSON_REMESH_add_named_parameter(feature_policy_t, feature_policy, feature_policy)
 POISSON_REMESH_add_named_parameter(sharp_angle_t, sharp_angle, sharp_angle)
 POISSON_REMESH_add_named_parameter(corner_angle_t, corner_angle, corner_angle)
+POISSON_REMESH_add_named_parameter(minimum_feature_length_t, minimum_feature_length, minimum_feature_length)
 
 // the pluggable models of the package's concepts
 POISSON_REMESH_add_named_parameter(geodesic_oracle_t, geodesic_oracle, geodesic_oracle)
