@@ -23,6 +23,7 @@
 
 #include <Poisson_remesh/parameters.h>
 
+#include <CGAL/Kernel_traits.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -172,7 +173,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
       if(!fs.feature_edge[eidx(e)] || border_edge[eidx(e)]) continue;
       const halfedge_descriptor h = halfedge(e, tm);
       const auto mid = CGAL::midpoint(get(vpm, source(h, tm)), get(vpm, target(h, tm)));
-      typename boost::property_traits<decltype(vpm)>::value_type::R::Vector_3 n[2];
+      typename CGAL::Kernel_traits<typename boost::property_traits<decltype(vpm)>::value_type>::Kernel::Vector_3 n[2];
       bool met = false;
       ++visit;
       for(int side = 0; side < 2 && !met; ++side) {
