@@ -79,26 +79,29 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
 
   t = now();
   // what each output vertex is: corner, feature or surface sample (leftover input vertices are fixed)
-  auto vim = CGAL::get_initialized_vertex_index_map(output);
-  std::vector<int> kind(num_vertices(output), -1);
+  // (a dynamic map: the relaxer may add feature vertices)
+  auto kind_map = get(CGAL::dynamic_vertex_property_t<int>(), output);
+  for(vertex_descriptor v : vertices(output)) put(kind_map, v, -1);
   for(const auto& v : tessellation.vertices)
-    if(v.sample != tessellation.no_sample) kind[get(vim, v.vertex)] = int(samples[v.sample].kind);
+    if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
+  auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
   Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
   auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
   // an output feature edge joins two feature (or corner) samples along an input feature curve
   auto is_feature = [&](edge_descriptor e) {
     const vertex_descriptor a = source(halfedge(e, output), output), b = target(halfedge(e, output), output);
-    const int ka = kind[get(vim, a)], kb = kind[get(vim, b)];
+    const int ka = kind(a), kb = kind(b);
     if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
     if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
     const Point_3 mid = CGAL::midpoint(point(a), point(b));
     const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
     return d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b)));
   };
-  auto is_fixed = [&](vertex_descriptor v) { const int k = kind[get(vim, v)]; return k < 0 || k == int(Sample_kind::corner); };
+  auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
+  auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
   Relaxation_settings settings;
   settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-  result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings);
+  result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
   result.seconds_relaxation = since(t);
   return result;
 }

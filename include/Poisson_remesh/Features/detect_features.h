@@ -207,6 +207,24 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
     }
     for(edge_descriptor e : edges(tm))
       if(fs.feature_edge[eidx(e)] && !keep[eidx(e)]) { fs.feature_edge[eidx(e)] = false; ++fs.number_of_removed_false_features; }
+    // a face whose three edges are creases is a crease cycle no output edge can follow (the
+    // tessellation would merge two of its curves): its least sharp edge is dropped
+    for(face_descriptor f : faces(tm)) {
+      halfedge_descriptor least = GT::null_halfedge();
+      double least_cos = -2;
+      std::size_t sharp = 0;
+      for(halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, tm), tm)) {
+        if(!fs.feature_edge[eidx(edge(g, tm))] || border_edge[eidx(edge(g, tm))]) continue;
+        ++sharp;
+        const auto p = get(vpm, source(g, tm)), q = get(vpm, target(g, tm));
+        const auto n1 = CGAL::cross_product(q - p, get(vpm, target(next(g, tm), tm)) - p);
+        const auto n2 = CGAL::cross_product(get(vpm, target(next(opposite(g, tm), tm), tm)) - q, p - q);
+        const double l1 = std::sqrt(CGAL::to_double(n1.squared_length())), l2 = std::sqrt(CGAL::to_double(n2.squared_length()));
+        const double c = l1 > 0 && l2 > 0 ? CGAL::to_double(n1 * n2) / (l1 * l2) : 1;
+        if(c > least_cos) { least_cos = c; least = g; }
+      }
+      if(sharp == 3) { fs.feature_edge[eidx(edge(least, tm))] = false; ++fs.number_of_removed_false_features; }
+    }
   }
 
   // 2. remove dangling short chains of sharp (non-border) edges, until none is left

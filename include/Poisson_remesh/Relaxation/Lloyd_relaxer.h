@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -62,11 +63,17 @@ struct Relaxation_settings
   double sliver_angle = 30;
   double sliver_edge_ratio = 0.45;
   unsigned int rounds_after_collapse = 3;
+  /// (beyond the paper) a feature or border edge longer than this times the mean length of the
+  /// other edges at its ends (a feature sample was refused there, too close to another curve's)
+  /// is split at its midpoint projected onto the input's features, unless the curve bends away
+  /// from the edge or a new triangle would turn; 0 disables. Needs the callback that tells the
+  /// caller about the new vertex (see relax()).
+  double long_edge_ratio = 1.6;
 };
 
 struct Relaxation_statistics
 {
-  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0;
+  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
 };
 
 template <class InputMesh, class GeomTraits>
@@ -100,13 +107,34 @@ public:
   template <class Mesh, class IsFeatureEdge, class IsCorner>
   Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s = {}) const
   {
+    return relax(mesh, is_feature, is_corner, s, No_new_vertex());
+  }
+
+  struct No_new_vertex
+  {
+    template <class V> void operator()(V, bool) const {}
+    static constexpr bool splits = false;
+  };
+
+  /// As above; `new_vertex(v, on_feature)` is called for each vertex the long-edge splits add
+  /// (on_feature: a feature vertex between two feature or corner vertices, on the input's
+  /// features; else a free vertex on the input surface), so that the caller's `is_feature` and
+  /// `is_corner` know it. Without it, no edge is split.
+  template <class Mesh, class IsFeatureEdge, class IsCorner, class NewVertex>
+  Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
+                              NewVertex new_vertex) const
+  {
     Relaxation_statistics stats;
     for(unsigned int it = 0; it < s.iterations; ++it) {
       lloyd_pass(mesh, is_feature, is_corner, stats);
       if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
       if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
     }
-    if(s.collapse_slivers && collapse_pass(mesh, is_feature, is_corner, s, stats) > 0)
+    std::size_t changed = 0;
+    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+      if(s.long_edge_ratio > 0) changed += split_pass(mesh, is_feature, new_vertex, s, stats);
+    if(s.collapse_slivers) changed += collapse_pass(mesh, is_feature, is_corner, s, stats);
+    if(changed > 0)
       for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) {
         lloyd_pass(mesh, is_feature, is_corner, stats);
         if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
@@ -332,6 +360,57 @@ private:
     if(is_corner(v)) return 2;
     const std::size_t fd = feature_degree(v, m, is_feature);
     return fd == 0 ? 0 : fd == 2 ? 1 : 2;
+  }
+
+  template <class Mesh, class IsFeatureEdge, class NewVertex>
+  std::size_t split_pass(Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Relaxation_settings& s,
+                         Relaxation_statistics& stats) const
+  {
+    typedef boost::graph_traits<Mesh> GT;
+    typedef typename GT::vertex_descriptor vertex_descriptor;
+    typedef typename GT::halfedge_descriptor halfedge_descriptor;
+    auto vpm = get(CGAL::vertex_point, m);
+    auto length = [&](vertex_descriptor a, vertex_descriptor b) { return std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b)))); };
+    std::vector<std::pair<vertex_descriptor, vertex_descriptor>> long_edges;
+    for(auto e : edges(m)) {
+      if(!is_feature(e) && !is_border(e, m)) continue;   // (splitting long free edges too was tried: no better angles, worse Hausdorff on fandisk)
+      const vertex_descriptor a = source(halfedge(e, m), m), b = target(halfedge(e, m), m);
+      double sum = 0;
+      std::size_t n = 0;
+      for(vertex_descriptor x : {a, b})
+        for(auto h : CGAL::halfedges_around_target(x, m))
+          if(edge(h, m) != e && !is_feature(edge(h, m)) && !is_border(edge(h, m), m)) { sum += length(source(h, m), x); ++n; }
+      if(n > 0 && length(a, b) > s.long_edge_ratio * sum / double(n)) long_edges.push_back({a, b});
+    }
+    std::size_t done = 0;
+    for(const auto& ab : long_edges) {
+      const auto h = halfedge(ab.first, ab.second, m);
+      if(!h.second) continue;
+      const bool on_feature = is_feature(edge(h.first, m)) || is_border(edge(h.first, m), m);
+      const Point_3 chord_mid = CGAL::midpoint(get(vpm, ab.first), get(vpm, ab.second));
+      const Point_3 mid = on_feature ? project_on_features(chord_mid) : project_on_surface(chord_mid);
+      // the feature must run along the edge: a curve that bends away (the projection lands far
+      // from the chord) would fold the new triangles
+      if(CGAL::to_double(CGAL::squared_distance(mid, chord_mid)) > CGAL::square(0.1 * length(ab.first, ab.second))) continue;
+      // and the four new triangles stay close to the two old ones (no fold on thin parts)
+      bool folds = false;
+      for(halfedge_descriptor g : {h.first, opposite(h.first, m)}) {
+        if(is_border(g, m)) continue;
+        const Point_3 &P = get(vpm, source(g, m)), &Q = get(vpm, target(g, m)), &R = get(vpm, target(next(g, m), m));
+        const Vector_3 n = normal(P, Q, R);
+        if(cos_between(normal(P, mid, R), n) < 0.8 || cos_between(normal(mid, Q, R), n) < 0.8) folds = true;
+      }
+      if(folds) continue;
+      const halfedge_descriptor hnew = CGAL::Euler::split_edge(h.first, m);   // hnew points to the new vertex
+      const vertex_descriptor v = target(hnew, m);
+      put(vpm, v, mid);
+      for(halfedge_descriptor g : {hnew, opposite(h.first, m)})
+        if(!is_border(g, m)) CGAL::Euler::split_face(g, next(next(g, m), m), m);
+      new_vertex(v, on_feature);
+      ++done;
+    }
+    stats.splits += done;
+    return done;
   }
 
   template <class Mesh, class IsFeatureEdge, class IsCorner>

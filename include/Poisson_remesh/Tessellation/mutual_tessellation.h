@@ -85,6 +85,11 @@ struct Mutual_tessellation_settings
   bool repair_self_intersections = true;
   /// passes of removal (each followed by flips) before the leftovers are reported.
   std::size_t max_removal_passes = 30;
+  /// (beyond the paper) an original vertex the passes could not remove is collapsed onto one of
+  /// its sample neighbours (along its feature curve if it is on one) when the link condition
+  /// holds (the topology is kept) and no triangle turns by more than the last-resort deviation:
+  /// typically the ring of a sharp tip, whose removal folds the star
+  bool collapse_leftovers = true;
 };
 
 /// What the tessellation did, and what each output vertex is.
@@ -113,6 +118,7 @@ struct Mutual_tessellation_result
   std::size_t number_of_repair_flips = 0;           ///< flips that removed self-intersections (last step)
   std::size_t number_of_removed_vertices = 0;
   std::size_t number_of_removal_passes = 0;
+  std::size_t number_of_collapsed_vertices = 0;     ///< original vertices removed by a collapse (fallback)
   std::size_t number_of_refused_removals = 0;       ///< attempts refused (a vertex may be tried again)
   /// why the last pass (and the retry after the repair) refused the leftovers: a star that is
   /// not a simple (half) disk (repeated ring vertex, feature degree not 2, two border fans), the
@@ -315,6 +321,18 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
       }
       if(left.size() < originals.size()) result.number_of_repair_flips += T.repair_self_intersections();
       originals.swap(left);
+    }
+  }
+  if(settings.collapse_leftovers && !originals.empty()) {
+    std::vector<vertex_descriptor> left;
+    for(vertex_descriptor v : originals) {
+      if(T.try_collapse(v)) { ++result.number_of_removed_vertices; ++result.number_of_collapsed_vertices; }
+      else left.push_back(v);
+    }
+    originals.swap(left);
+    if(result.number_of_collapsed_vertices > 0) {
+      T.flip_edges();
+      result.number_of_flips = T.flips;
     }
   }
   result.refused_star = T.refusals[0];

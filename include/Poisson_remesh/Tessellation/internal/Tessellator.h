@@ -479,7 +479,22 @@ public:
       make_side(feature_at[0], feature_at[1], false);
       make_side(feature_at[1], feature_at[0], false);
       const bool adjacent = sides[0].polygon.size() == 2 || sides[1].polygon.size() == 2;
-      if(!adjacent && edge_exists(fa, fb)) { ++refusals[1]; return false; }   // the feature edge would be doubled
+      if(!adjacent && edge_exists(fa, fb)) {   // the feature edge would be doubled
+        // last resort (beyond the paper): the curve takes the existing edge fa-fb as its own,
+        // v leaves the curve and is removed as a smooth vertex; undone if that fails
+        const halfedge_descriptor ab = halfedge(fa, fb, tm).first;
+        if(last_resort && !is_feature(ab) && !is_border_edge(ab, tm)) {
+          put(feature, edge(ab, tm), true);
+          put(feature, edge(out_h[feature_at[0]], tm), false);
+          put(feature, edge(out_h[feature_at[1]], tm), false);
+          if(try_remove(v)) return true;
+          put(feature, edge(ab, tm), false);
+          put(feature, edge(out_h[feature_at[0]], tm), true);
+          put(feature, edge(out_h[feature_at[1]], tm), true);
+        }
+        ++refusals[1];
+        return false;
+      }
       if(sides[0].polygon.size() == 2 && sides[1].polygon.size() == 2) { ++refusals[0]; return false; }
     }
     std::vector<std::vector<Tri>> tris(sides.size());
@@ -521,7 +536,91 @@ public:
       }
       if(!done) throw std::logic_error("mutual_tessellation: a diagonal left its hole");
     }
-    if(fa != GT::null_vertex()) put(feature, edge(halfedge(fa, fb, tm).first, tm), true);
+    if(fa != GT::null_vertex()) {
+      put(feature, edge(halfedge(fa, fb, tm).first, tm), true);
+      // when fa-fb was a feature edge already, v's curve merged into it and fa, fb lost a feature
+      // edge: an original vertex left at the free end of a curve cannot be removed, so that end
+      // (dangling, between originals only) is no feature any more
+      prune_dangling(fa);
+      prune_dangling(fb);
+    }
+    return true;
+  }
+
+  /// while x is an original vertex with one feature edge, that edge stops being a feature and x
+  /// moves to its other end
+  void prune_dangling(vertex_descriptor x)
+  {
+    while(!is_sample(x)) {
+      halfedge_descriptor only = GT::null_halfedge();
+      std::size_t n = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_source(x, tm))
+        if(is_feature(h) && !is_border_edge(h, tm)) { only = h; ++n; }
+      if(n != 1) return;
+      put(feature, edge(only, tm), false);
+      x = target(only, tm);
+    }
+  }
+
+  /// (beyond the paper) removes the original vertex v by collapsing one of its edges onto a
+  /// sample neighbour: along a feature edge when v is on a feature curve (feature degree 2), onto
+  /// any sample otherwise; the neighbour giving the largest smallest angle wins. Refused when the
+  /// link condition fails (the topology would change), a ring vertex would be left with degree 2,
+  /// or a triangle would turn by more than the last-resort deviation.
+  bool try_collapse(vertex_descriptor v)
+  {
+    if(is_sample(v)) return false;
+    std::size_t features = 0;
+    for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm)) if(is_feature(g)) ++features;
+    if(features != 0 && features != 2) return false;
+    const double max_dev = settings.max_removal_normal_deviation_last_resort * CGAL_PI / 180;
+    halfedge_descriptor best = GT::null_halfedge();
+    double best_q = -1;
+    for(halfedge_descriptor g : CGAL::halfedges_around_source(v, tm)) {   // g: v -> w
+      const vertex_descriptor w = target(g, tm);
+      if(!is_sample(w) || (features == 2 && !is_feature(g))) continue;
+      if(features == 2) {   // the other feature neighbour must not be joined to w by a feature edge already
+        bool merges = false;
+        for(halfedge_descriptor h : CGAL::halfedges_around_source(v, tm))
+          if(is_feature(h) && target(h, tm) != w && edge_exists(w, target(h, tm)) && is_feature(halfedge(w, target(h, tm), tm).first)) merges = true;
+        if(merges) continue;
+      }
+      if(!CGAL::Euler::does_satisfy_link_condition(edge(g, tm), tm)) continue;
+      bool ok = true;
+      for(halfedge_descriptor x : {g, opposite(g, tm)})
+        if(!is_border(x, tm) && degree(target(next(x, tm), tm), tm) <= 3) ok = false;
+      if(!ok) continue;
+      const Vec3 pw = xyz(w), pv = xyz(v);
+      double q = CGAL_PI;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(v, tm)) {   // face (source(h), v, next)
+        if(is_border(h, tm)) continue;
+        const vertex_descriptor a = source(h, tm), b = target(next(h, tm), tm);
+        if(a == w || b == w) continue;   // goes with the collapse
+        const Vec3 pa = xyz(a), pb = xyz(b);
+        const Vec3 before = triangle_normal(pa, pv, pb), after = triangle_normal(pa, pw, pb);
+        if(!(norm3(after) > 0) || angle3(before, after) > max_dev) { ok = false; break; }
+        q = std::min(q, smallest_angle(pa, pw, pb));
+      }
+      if(ok && q > best_q) { best_q = q; best = g; }
+    }
+    if(best == GT::null_halfedge()) return false;
+    // the feature edges around, as vertex pairs (v renamed w), to mark again afterwards
+    const vertex_descriptor w = target(best, tm);
+    std::vector<std::pair<vertex_descriptor, vertex_descriptor>> marked;
+    for(halfedge_descriptor h : CGAL::halfedges_around_source(v, tm))
+      if(is_feature(h) && target(h, tm) != w) marked.push_back({w, target(h, tm)});
+    for(halfedge_descriptor h : CGAL::halfedges_around_source(w, tm))
+      if(is_feature(h) && target(h, tm) != v) marked.push_back({w, target(h, tm)});
+    const Point_3 pw = get(vpm, w);
+    const long ow = get(origin, w);
+    const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(best, tm), tm);   // keeps target(best) = w
+    put(vpm, kept, pw);
+    put(origin, kept, ow);
+    for(halfedge_descriptor h : CGAL::halfedges_around_source(kept, tm)) put(feature, edge(h, tm), false);
+    for(const auto& pr : marked) {
+      const auto h = halfedge(pr.first == w ? kept : pr.first, pr.second, tm);
+      if(h.second) put(feature, edge(h.first, tm), true);
+    }
     return true;
   }
 
