@@ -39,8 +39,9 @@ struct Poisson_remesh_result
 
   Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
   `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
-  `sharp_angle`, `corner_angle`, `edge_is_constrained_map`) and `number_of_iterations` (CGAL;
-  relaxation rounds, default 10: see Relaxation_settings).
+  `sharp_angle`, `corner_angle`, `minimum_feature_length`, `edge_is_constrained_map`),
+  `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings) and
+  `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features).
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& output,
@@ -101,7 +102,10 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
   Relaxation_settings settings;
   settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-  result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
+  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value)
+    result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
+  else   // the user's model of the Relaxer concept
+    result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
   result.seconds_relaxation = since(t);
   return result;
 }

@@ -125,3 +125,35 @@ TEST_CASE("the whole remesher runs on Polyhedron_3 and keeps a cube's corners an
   }
   CHECK(corners == 8);
 }
+
+namespace {
+// a model of the Relaxer concept that only counts its calls (and leaves the tessellation as it is)
+struct Counting_relaxer
+{
+  int* calls;
+  template <class M, class F, class X, class N>
+  PR::Relaxation_statistics relax(M&, F, X, const PR::Relaxation_settings& s, N) const
+  {
+    ++*calls;
+    CHECK(s.iterations == 2u);   // number_of_iterations reaches the relaxer
+    return {};
+  }
+};
+} // namespace
+
+TEST_CASE("a user's Relaxer is used through the relaxer named parameter", "[remesh][relaxer]")
+{
+  Mesh in, relaxed, plain;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), in);
+  int calls = 0;
+  PR::poisson_remesh(in, plain, PR::parameters::target_vertex_count(800).random_seed(5u)
+                                   .relaxer(Counting_relaxer{&calls}).number_of_iterations(2u));
+  PR::poisson_remesh(in, relaxed, PR::parameters::target_vertex_count(800).random_seed(5u).number_of_iterations(2u));
+  CHECK(calls == 1);
+  const PR::Quality_report a = PR::quality_report(plain, PR::parameters::check_self_intersections(false));
+  const PR::Quality_report b = PR::quality_report(relaxed, PR::parameters::check_self_intersections(false));
+  // unrelaxed: the mutual tessellation itself (Delaunay-like, mean smallest angle about 45)
+  CHECK(a.mean_min_angle < 47);
+  CHECK(b.mean_min_angle > a.mean_min_angle + 3);
+  CHECK(a.euler_characteristic == b.euler_characteristic);
+}
