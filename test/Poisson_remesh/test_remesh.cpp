@@ -157,3 +157,95 @@ TEST_CASE("a user's Relaxer is used through the relaxer named parameter", "[reme
   CHECK(b.mean_min_angle > a.mean_min_angle + 3);
   CHECK(a.euler_characteristic == b.euler_characteristic);
 }
+
+// ------------------------------------------------------------------ imperfect but valid input (issue 7)
+
+namespace {
+// every point scaled by s about the origin
+Mesh scaled(const Mesh& m, double s)
+{
+  Mesh out = m;
+  for(auto v : vertices(out)) out.point(v) = Point(s * m.point(v).x(), s * m.point(v).y(), s * m.point(v).z());
+  return out;
+}
+// the soups of `parts` in one soup, the i-th moved by offsets[i] along x
+analytic::Soup merged(const std::vector<analytic::Soup>& parts, const std::vector<double>& offsets)
+{
+  analytic::Soup s;
+  for(std::size_t i = 0; i < parts.size(); ++i) {
+    const std::size_t base = s.points.size();
+    for(auto p : parts[i].points) { p[0] += offsets[i]; s.points.push_back(p); }
+    for(auto t : parts[i].triangles) { for(auto& k : t) k += base; s.triangles.push_back(t); }
+  }
+  return s;
+}
+} // namespace
+
+TEST_CASE("remeshing does not depend on the size of the coordinates (1e-6 to 1e6)", "[remesh][robustness]")
+{
+  Mesh in;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), in);
+  Mesh ref;
+  PR::poisson_remesh(in, ref, PR::parameters::target_vertex_count(1000).random_seed(6u));
+  const PR::Quality_report qr = PR::quality_report(ref, in);
+  for(double s : {1e-6, 1e6}) {
+    INFO("scale " << s);
+    const Mesh big = scaled(in, s);
+    Mesh out;
+    PR::poisson_remesh(big, out, PR::parameters::target_vertex_count(1000).random_seed(6u));
+    const PR::Quality_report q = PR::quality_report(out, big);
+    // tolerances are relative to the mesh, so the result is the same kind of mesh; round-off
+    // changes some decisions (a sample a few ulps inside or outside a disk), not its quality
+    CHECK(std::abs(double(q.number_of_vertices) - double(qr.number_of_vertices)) <= 0.02 * double(qr.number_of_vertices));
+    CHECK(q.euler_characteristic == qr.euler_characteristic);
+    CHECK(std::abs(q.mean_min_angle - qr.mean_min_angle) < 1.0);
+    CHECK(q.mean_min_angle > 51);
+    CHECK(*q.hausdorff < 1.2 * *qr.hausdorff + 1e-3);
+    CHECK(q.number_of_self_intersecting_face_pairs == 0);
+  }
+}
+
+TEST_CASE("several components, tiny ones included, and an open mesh with three borders are remeshed", "[remesh][robustness]")
+{
+  SECTION("a sphere, a torus and a sphere 50 times smaller") {
+    const Mesh in = merged({analytic::sphere(40, 20), analytic::torus(48, 16), analytic::sphere(12, 6, 0.02)}, {0, 5, -3})
+                      .to_mesh<Mesh>();
+    Mesh out;
+    const auto run = PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(1500).random_seed(2u));
+    const PR::Quality_report a = PR::quality_report(in), b = PR::quality_report(out, in);
+    CHECK(b.number_of_components == 3);   // the tiny sphere gets a seed of its own
+    CHECK(b.euler_characteristic == a.euler_characteristic);
+    CHECK(CGAL::is_closed(out));
+    CHECK(run.number_of_leftover_input_vertices <= 8);   // the tiny sphere is far under the sample spacing
+    CHECK(b.mean_min_angle > 50);
+    CHECK(b.number_of_self_intersecting_face_pairs == 0);
+  }
+  SECTION("a square with two round holes: three borders kept as features") {
+    analytic::Soup s = analytic::plane(40, 40);
+    std::vector<std::vector<std::size_t>> kept;
+    for(const auto& t : s.triangles) {
+      double cx = 0, cy = 0;
+      for(auto k : t) { cx += s.points[k][0] / 3; cy += s.points[k][1] / 3; }
+      const bool in_hole = std::hypot(cx - 0.3, cy - 0.3) < 0.12 || std::hypot(cx - 0.7, cy - 0.65) < 0.15;
+      if(!in_hole) kept.push_back(t);
+    }
+    s.triangles = kept;
+    // (the grid points inside the holes stay in the mesh as isolated vertices: they are ignored)
+    const Mesh in = s.to_mesh<Mesh>();
+    std::size_t isolated = 0;
+    for(auto v : vertices(in)) if(halfedge(v, in) == Mesh::null_halfedge()) ++isolated;
+    REQUIRE(isolated > 0);
+    Mesh out;
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(800).random_seed(2u));
+    const PR::Quality_report a = PR::quality_report(in), b = PR::quality_report(out, in);
+    REQUIRE(a.number_of_border_cycles == 3);
+    CHECK(b.number_of_border_cycles == 3);
+    CHECK(b.euler_characteristic == 1 - 2);   // a disk with two holes
+    CHECK(b.euler_characteristic == a.euler_characteristic - long(isolated));
+    CHECK(b.mean_min_angle > 50);
+    CHECK(b.min_angle > 20);
+    // the borders are kept up to the staircase of the holes' borders (one grid step, 1/40, is
+    // 1.77% of the diagonal): measured 1.77%
+    CHECK(*b.hausdorff < 0.025);
+  }
+}

@@ -402,7 +402,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
   if(scale > 0 && policy == Feature_policy::detect) {
     std::vector<double> defect(num_vertices(tm), 0);
     for(vertex_descriptor v : vertices(tm)) {
-      if(is_border(v, tm)) continue;
+      if(halfedge(v, tm) == GT::null_halfedge() || is_border(v, tm)) continue;   // isolated, or on a border
       double sum = 0;
       for(halfedge_descriptor h : CGAL::halfedges_around_target(v, tm)) {
         const auto p = get(vpm, v);

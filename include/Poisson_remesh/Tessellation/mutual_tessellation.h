@@ -149,7 +149,7 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
 
   auto vim = CGAL::get_initialized_vertex_index_map(input);
   auto fim = CGAL::get_initialized_face_index_map(input);
-  std::vector<vertex_descriptor> v2v(num_vertices(input)), input_vertex(num_vertices(input));
+  std::vector<vertex_descriptor> v2v(num_vertices(input), GT::null_vertex()), input_vertex(num_vertices(input), GT::null_vertex());
   std::vector<face_descriptor> f2f(num_faces(input));
   std::vector<std::pair<halfedge_descriptor, halfedge_descriptor>> h2h;
   CGAL::copy_face_graph(input, work,
@@ -160,7 +160,9 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
         [&](const std::pair<face_descriptor, face_descriptor>& p) { f2f[get(fim, p.first)] = p.second; }))
       .halfedge_to_halfedge_output_iterator(std::back_inserter(h2h)),
     CGAL::parameters::vertex_point_map(vpm));
-  for(auto v : vertices(input)) put(T.origin, v2v[get(vim, v)], -long(get(vim, v)) - 1);
+  // (isolated input vertices are not copied: they are no part of the surface)
+  for(auto v : vertices(input))
+    if(v2v[get(vim, v)] != GT::null_vertex()) put(T.origin, v2v[get(vim, v)], -long(get(vim, v)) - 1);
   for(auto e : edges(work)) put(T.feature, e, false);
   for(const auto& hh : h2h) if(features.is_feature(edge(hh.first, input))) put(T.feature, edge(hh.second, work), true);
   std::vector<std::vector<face_descriptor>> sub_faces(num_faces(input));
