@@ -7,6 +7,7 @@ packages=(
   cmake g++ make ccache
   libcgal-dev libboost-dev libeigen3-dev libgmp-dev libmpfr-dev
   catch2 libtbb-dev
+  clang libclang-rt-14-dev   # the libFuzzer targets (scripts/fuzz.sh, ctest fuzz_smoke)
   libcgal-demo   # CGAL's data set: /usr/share/doc/libcgal-dev/data.tar.gz
 )
 

@@ -152,11 +152,14 @@ poisson_disk_sample_levels(const TriangleMesh& tm, const std::vector<double>& ra
 
   std::vector<Poisson_disk_sampling_result> results;
   Boundary_sampler<TriangleMesh, decltype(vpm)> sampler(tm, vpm, seed);
+  // one feature set for every level (judged at the coarsest radius), so that the corners and
+  // curves of a level are those of the levels below
+  const Feature_set<TriangleMesh> features = radii.empty() ? Feature_set<TriangleMesh>() : internal::detect_features_at_radius(tm, radii.front(), np);
   for(double r : radii) {
     Poisson_disk_sampling_result result;
     result.radius = r;
     sampler.set_radius(r);
-    internal::sample_features(sampler, tm, vpm, internal::detect_features_at_radius(tm, r, np), results.empty(), result);
+    internal::sample_features(sampler, tm, vpm, features, results.empty(), result);
     sampler.seed_components();
     sampler.fill();
     result.number_of_samples = sampler.samples().size();

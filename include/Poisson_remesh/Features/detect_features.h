@@ -179,6 +179,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
       for(int side = 0; side < 2 && !met; ++side) {
         const face_descriptor f0 = face(side == 0 ? h : opposite(h, tm), tm);
         const std::size_t mark = 2 * visit + std::size_t(side);
+        if(side == 1 && get(stamp, f0) == 2 * visit) { met = true; break; }   // side 0 reached it
         std::vector<face_descriptor> stack{f0};
         put(stamp, f0, mark);
         n[side] = CGAL::NULL_VECTOR;
@@ -218,7 +219,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
         ++sharp;
         const auto p = get(vpm, source(g, tm)), q = get(vpm, target(g, tm));
         const auto n1 = CGAL::cross_product(q - p, get(vpm, target(next(g, tm), tm)) - p);
-        const auto n2 = CGAL::cross_product(get(vpm, target(next(opposite(g, tm), tm), tm)) - q, p - q);
+        const auto n2 = CGAL::cross_product(p - q, get(vpm, target(next(opposite(g, tm), tm), tm)) - q);   // face (q, p, s)
         const double l1 = std::sqrt(CGAL::to_double(n1.squared_length())), l2 = std::sqrt(CGAL::to_double(n2.squared_length()));
         const double c = l1 > 0 && l2 > 0 ? CGAL::to_double(n1 * n2) / (l1 * l2) : 1;
         if(c > least_cos) { least_cos = c; least = g; }
@@ -433,7 +434,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
       }
     };
     for(vertex_descriptor v : vertices(tm)) {
-      if(defect[vidx(v)] <= 0 || fs.corner[vidx(v)]) continue;
+      if(defect[vidx(v)] <= 0 || degree[vidx(v)] > 0) continue;   // corners and curves are traced already
       double sum = 0;
       bool pointiest = true;
       ball(v, [&](vertex_descriptor w) {

@@ -479,6 +479,8 @@ private:
         after = std::min(after, min_angle(get(vpm, x), pa, get(vpm, y)));
       }
       if(!(after > before)) continue;
+      // collapse_edge(e) keeps target(halfedge(e)): a must be that vertex
+      if(target(halfedge(edge(hba, m), m), m) != a) continue;
       const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(hba, m), m);
       put(vpm, kept, pa);
       removed.push_back(b);

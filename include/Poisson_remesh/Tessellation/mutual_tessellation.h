@@ -335,6 +335,7 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
     if(result.number_of_collapsed_vertices > 0) {
       T.flip_edges();
       result.number_of_flips = T.flips;
+      if(settings.repair_self_intersections) result.number_of_repair_flips += T.repair_self_intersections();
     }
   }
   result.refused_star = T.refusals[0];

@@ -604,6 +604,7 @@ public:
       if(ok && q > best_q) { best_q = q; best = g; }
     }
     if(best == GT::null_halfedge()) return false;
+    if(target(halfedge(edge(best, tm), tm), tm) != target(best, tm)) return false;   // collapse_edge keeps target(halfedge(e))
     // the feature edges around, as vertex pairs (v renamed w), to mark again afterwards
     const vertex_descriptor w = target(best, tm);
     std::vector<std::pair<vertex_descriptor, vertex_descriptor>> marked;
