@@ -90,6 +90,7 @@ struct Read_report
   std::size_t triangulated_polygons = 0;  ///< faces with more than 3 vertices that were triangulated
   bool reoriented = false;                ///< faces were flipped to make the orientation consistent
   std::size_t removed_degenerate_faces = 0; ///< with repair_degenerate_faces(true)
+  std::size_t removed_isolated_points = 0;  ///< points used by no face (dropped)
   std::vector<std::string> warnings;      ///< one sentence each
 };
 
@@ -266,6 +267,23 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
     auto dup = std::adjacent_find(sorted.begin(), sorted.end());
     if(dup != sorted.end())
       throw Input_error(Input_error_code::invalid_face, where + " repeats vertex " + std::to_string(*dup));
+  }
+
+  // points no face uses (common in STL and in scans) would be isolated vertices: dropped, and said
+  {
+    std::vector<bool> used(points.size(), false);
+    for(const auto& poly : polygons) for(std::size_t v : poly) used[v] = true;
+    const std::size_t unused = std::size_t(std::count(used.begin(), used.end(), false));
+    if(unused > 0) {
+      std::vector<std::size_t> new_index(points.size(), 0);
+      std::vector<Point> kept;
+      for(std::size_t i = 0; i < points.size(); ++i)
+        if(used[i]) { new_index[i] = kept.size(); kept.push_back(points[i]); }
+      for(auto& poly : polygons) for(std::size_t& v : poly) v = new_index[v];
+      points.swap(kept);
+      report.removed_isolated_points = unused;
+      report.warnings.push_back(std::to_string(unused) + " points used by no face were dropped");
+    }
   }
 
   // 4. manifoldness and orientation

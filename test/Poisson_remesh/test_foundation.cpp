@@ -379,6 +379,15 @@ TEST_CASE("reading accepts imperfect but valid input and says what it did", "[re
     CHECK(CGAL::is_closed(m));
     CHECK(CGAL::to_double(PMP::area(m)) == Approx(6));
   }
+  SECTION("points no face uses are dropped (found by fuzzing: they made an invalid mesh)") {
+    Mesh m;
+    const PR::Read_report rr = PR::read_surface_mesh(
+        write_text(dir / "unused.off", "OFF\n5 1 0\n0 0 0\n9 9 9\n1 0 0\n0 1 0\n7 7 7\n3 0 2 3\n"), m);
+    CHECK(rr.removed_isolated_points == 2);
+    CHECK(num_vertices(m) == 3);
+    CHECK(CGAL::is_valid_polygon_mesh(m));
+    CHECK(!rr.warnings.empty());
+  }
   SECTION("inconsistent orientation is made consistent") {
     const std::string flipped = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
     Mesh m;
