@@ -155,6 +155,10 @@ private:
     const Vector_3 u = a - o, v = b - o;
     return std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(u, v).squared_length())), CGAL::to_double(u * v));
   }
+  static double min_angle(const Point_3& a, const Point_3& b, const Point_3& c)
+  {
+    return std::min({angle(b, a, c), angle(a, b, c), angle(a, c, b)});
+  }
   static Vector_3 normal(const Point_3& a, const Point_3& b, const Point_3& c) { return CGAL::cross_product(b - a, c - a); }
   static double cos_between(const Vector_3& a, const Vector_3& b)
   {
@@ -330,9 +334,6 @@ private:
   void valence_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats) const
   {
     const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
-    auto min_angle = [&](const Point_3& a, const Point_3& b, const Point_3& c) {
-      return std::min({angle(b, a, c), angle(a, b, c), angle(a, c, b)});
-    };
     for(auto e : edges(m)) {
       if(is_feature(e) || is_border(e, m)) continue;
       auto h = halfedge(e, m);
@@ -420,9 +421,6 @@ private:
     typedef typename GT::vertex_descriptor vertex_descriptor;
     auto vpm = get(CGAL::vertex_point, m);
     const double sliver = s.sliver_angle * CGAL_PI / 180;
-    auto min_angle = [&](const Point_3& a, const Point_3& b, const Point_3& c) {
-      return std::min({angle(b, a, c), angle(a, b, c), angle(a, c, b)});
-    };
     // the short edges of the slivers, shortest first
     std::vector<std::pair<double, std::pair<vertex_descriptor, vertex_descriptor>>> candidates;
     for(auto f : faces(m)) {
