@@ -21,9 +21,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -42,7 +44,7 @@ struct Row
   std::string contender, mesh;
   bool ok = false;
   std::string error;
-  double input_vertices = 0, target = 0, vertices = 0, faces = 0;
+  double input_vertices = 0, input_faces = 0, target = 0, vertices = 0, faces = 0;
   double min_angle = 0, mean_min_angle = 0, below_30 = 0, irregular = 0, hausdorff = 0;
   double self_intersections = 0, genus_kept = 0, seconds = 0, peak_mib = 0;
 };
@@ -98,7 +100,7 @@ static void run_row(const std::string& contender, const Contender& run, const st
     const double peak = peak_memory_mib();
     const PR::Quality_report in = PR::quality_report(input, PR::parameters::check_self_intersections(false));
     const PR::Quality_report r = PR::quality_report(output, input);
-    os << "ok 1\ninput_vertices " << num_vertices(input) << "\ntarget " << target << "\nvertices " << r.number_of_vertices
+    os << "ok 1\ninput_vertices " << num_vertices(input) << "\ninput_faces " << num_faces(input) << "\ntarget " << target << "\nvertices " << r.number_of_vertices
        << "\nfaces " << r.number_of_faces << "\nmin_angle " << r.min_angle << "\nmean_min_angle " << r.mean_min_angle
        << "\nbelow_30 " << r.share_min_angle_below_30 << "\nirregular " << r.irregular_share
        << "\nhausdorff " << (r.hausdorff ? *r.hausdorff : -1) << "\nself_intersections " << r.number_of_self_intersecting_face_pairs
@@ -148,7 +150,7 @@ static Row run_in_child(const std::string& contender, const Contender& run, cons
     return row;
   }
   row.ok = true;
-  row.input_vertices = v["input_vertices"]; row.target = v["target"]; row.vertices = v["vertices"]; row.faces = v["faces"];
+  row.input_vertices = v["input_vertices"]; row.input_faces = v["input_faces"]; row.target = v["target"]; row.vertices = v["vertices"]; row.faces = v["faces"];
   row.min_angle = v["min_angle"]; row.mean_min_angle = v["mean_min_angle"]; row.below_30 = v["below_30"];
   row.irregular = v["irregular"]; row.hausdorff = v["hausdorff"]; row.self_intersections = v["self_intersections"];
   row.genus_kept = v["genus_kept"]; row.seconds = v["seconds"]; row.peak_mib = v["peak_mib"];
@@ -184,6 +186,7 @@ int main(int argc, char** argv)
   for(const auto& c : contenders()) names.push_back(c.first);
   double factor = 1.0;
   std::string markdown = "RESULTS.md", json = "results.json", data = POISSON_REMESH_DATA_DIR;
+  bool scale_table = false;
   for(int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -196,9 +199,13 @@ int main(int argc, char** argv)
     else if(a == "--markdown") markdown = value();
     else if(a == "--json") json = value();
     else if(a == "--data") data = value();
+    else if(a == "--scale") scale_table = true;
     else if(a == "--help") {
-      std::cout << "usage: remesh_benchmark [--meshes a,b] [--contenders c,d] [--factor F] [--markdown FILE] [--json FILE] [--data DIR]\n"
-                   "  runs each contender on CGAL data meshes at F times the input's vertex count\n";
+      std::cout << "usage: remesh_benchmark [--meshes a,b] [--contenders c,d] [--factor F] [--markdown FILE] [--json FILE] [--data DIR] [--scale]\n"
+                   "  runs each contender on CGAL data meshes at F times the input's vertex count\n"
+                   "  (a mesh given with a '/' is a file); --scale adds a table of time and peak memory per input\n"
+                   "  face and their growth exponents from one mesh size to the next (meshes of one surface at\n"
+                   "  increasing sizes, as make_scale_series writes them)\n";
       return 0;
     }
     else { std::cerr << "remesh_benchmark: unknown option " << a << "\n"; return 2; }
@@ -206,11 +213,13 @@ int main(int argc, char** argv)
   const auto all = contenders();
   std::vector<Row> rows;
   for(const std::string& mesh : meshes) {
-    const std::string file = mesh.find('/') != std::string::npos ? mesh : data + "/meshes/" + mesh + ".off";
+    const bool is_path = mesh.find('/') != std::string::npos;
+    const std::string file = is_path ? mesh : data + "/meshes/" + mesh + ".off";
+    const std::string shown = is_path ? std::filesystem::path(mesh).stem().string() : mesh;
     for(const std::string& c : names) {
       if(!all.count(c)) { std::cerr << "remesh_benchmark: unknown contender " << c << "\n"; return 2; }
-      std::cerr << "running " << c << " on " << mesh << " ..." << std::flush;
-      rows.push_back(run_in_child(c, all.at(c), mesh, file, factor));
+      std::cerr << "running " << c << " on " << shown << " ..." << std::flush;
+      rows.push_back(run_in_child(c, all.at(c), shown, file, factor));
       std::cerr << (rows.back().ok ? " " + fmt(rows.back().seconds, 3) + " s\n" : " FAILED: " + rows.back().error + "\n");
     }
   }
@@ -229,6 +238,33 @@ int main(int argc, char** argv)
        << fmt(r.self_intersections, 0) << " | " << (r.genus_kept ? "yes" : "no") << " | " << fmt(r.seconds, 3) << " | "
        << fmt(r.peak_mib, 0) << " |\n";
   }
+  if(scale_table) {
+    // per contender, by increasing input size: cost per input face, and the exponent k of
+    // cost ~ faces^k between consecutive sizes (k = 1: linear)
+    md << "\n| contender | input faces | V out | seconds | µs / input face | time exponent | peak MiB | KiB / input face | memory exponent | time ours/peer | memory ours/peer |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for(const std::string& c : names) {
+      std::vector<const Row*> series;
+      for(const Row& r : rows) if(r.ok && r.contender == c) series.push_back(&r);
+      std::sort(series.begin(), series.end(), [](const Row* a, const Row* b) { return a->input_faces < b->input_faces; });
+      for(std::size_t i = 0; i < series.size(); ++i) {
+        const Row& r = *series[i];
+        auto exponent = [&](double now, double before) {
+          if(i == 0 || before <= 0 || now <= 0) return std::string("");
+          return fmt(std::log(now / before) / std::log(r.input_faces / series[i - 1]->input_faces), 2);
+        };
+        // the other contender on the same mesh, for the ratios
+        const Row* peer = nullptr;
+        for(const Row& o : rows) if(o.ok && o.mesh == r.mesh && o.contender != c) peer = &o;
+        md << "| " << c << " | " << fmt(r.input_faces, 0) << " | " << fmt(r.vertices, 0) << " | " << fmt(r.seconds, 2) << " | "
+           << fmt(1e6 * r.seconds / r.input_faces, 1) << " | " << exponent(r.seconds, i ? series[i - 1]->seconds : 0) << " | "
+           << fmt(r.peak_mib, 0) << " | " << fmt(1024 * r.peak_mib / r.input_faces, 2) << " | "
+           << exponent(r.peak_mib, i ? series[i - 1]->peak_mib : 0) << " | "
+           << (peer ? fmt(r.seconds / peer->seconds, 2) : std::string("")) << " | "
+           << (peer ? fmt(r.peak_mib / peer->peak_mib, 2) : std::string("")) << " |\n";
+      }
+    }
+  }
   std::cout << md.str();
   std::ofstream(markdown) << "<!-- written by remesh_benchmark on " << date << " -->\n"
                           << "Machine: " << machine_description() << "\n\n"
@@ -241,7 +277,7 @@ int main(int argc, char** argv)
     const Row& r = rows[i];
     js << "    {\"contender\": \"" << r.contender << "\", \"mesh\": \"" << r.mesh << "\", \"ok\": " << (r.ok ? "true" : "false");
     if(r.ok)
-      js << ", \"input_vertices\": " << r.input_vertices << ", \"target_vertices\": " << r.target << ", \"vertices\": " << r.vertices
+      js << ", \"input_vertices\": " << r.input_vertices << ", \"input_faces\": " << r.input_faces << ", \"target_vertices\": " << r.target << ", \"vertices\": " << r.vertices
          << ", \"faces\": " << r.faces << ", \"min_angle_deg\": " << r.min_angle << ", \"mean_min_angle_deg\": " << r.mean_min_angle
          << ", \"share_min_angle_below_30\": " << r.below_30 << ", \"irregular_share\": " << r.irregular
          << ", \"hausdorff_over_diagonal\": " << r.hausdorff << ", \"self_intersecting_pairs\": " << r.self_intersections

@@ -1,7 +1,7 @@
 // Poisson_remesh/read_surface_mesh.h
 //
 // Entry point: read_surface_mesh(filename, mesh, np) -- reads OFF, OBJ, PLY, STL (and GOCAD .ts)
-// through CGAL's readers, triangulates polygons, makes the orientation consistent where that is
+// through CGAL's readers, merges duplicated points, triangulates polygons, makes the orientation consistent where that is
 // possible, and checks that the result is input the remesher can work on (paper §3: an orientable
 // two-manifold; borders and several components are allowed). Every problem is reported by a
 // Poisson_remesh::Input_error with a specific code and a message that names the problem, how many
@@ -16,6 +16,7 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -91,6 +92,8 @@ struct Read_report
   bool reoriented = false;                ///< faces were flipped to make the orientation consistent
   std::size_t removed_degenerate_faces = 0; ///< with repair_degenerate_faces(true)
   std::size_t removed_isolated_points = 0;  ///< points used by no face (dropped)
+  std::size_t merged_duplicate_points = 0;  ///< points at the same position as another one, merged into it
+  std::size_t unmerged_duplicate_points = 0; ///< duplicates left apart: merging them would break manifoldness
   std::vector<std::string> warnings;      ///< one sentence each
 };
 
@@ -165,6 +168,32 @@ std::size_t count_non_manifold_soup_vertices(const PolygonRange& polygons, std::
     if(fans > 1) { if(count == 0) first = v; ++count; }
   }
   return count;
+}
+
+// Edges shared by more than two polygons: the count and the first such edge.
+template <class PolygonRange>
+std::size_t count_non_manifold_soup_edges(const PolygonRange& polygons, Soup_edge& first)
+{
+  std::map<Soup_edge, std::size_t> edge_faces;
+  for(const auto& poly : polygons)
+    for(std::size_t k = 0; k < poly.size(); ++k)
+      ++edge_faces[make_soup_edge(poly[k], poly[(k + 1) % poly.size()])];
+  std::size_t bad = 0;
+  for(const auto& e : edge_faces)
+    if(e.second > 2) { if(bad++ == 0) first = e.first; }
+  return bad;
+}
+
+template <class PolygonRange>
+bool soup_has_repeated_vertex(const PolygonRange& polygons)
+{
+  std::vector<std::size_t> sorted;
+  for(const auto& poly : polygons) {
+    sorted.assign(poly.begin(), poly.end());
+    std::sort(sorted.begin(), sorted.end());
+    if(std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return true;
+  }
+  return false;
 }
 
 } // namespace internal
@@ -286,16 +315,35 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
     }
   }
 
+  // points at the same position (each triangle with its own corners, as STL-like exports and
+  // some marching-cubes codes write them) are merged with CGAL's soup repair, unless the merge
+  // would make a face repeat a vertex or the surface non-manifold: then they are kept apart
+  {
+    std::vector<Point> merged_points(points);
+    std::vector<std::vector<std::size_t>> merged_polygons(polygons);
+    const std::size_t merged = PMP::merge_duplicate_points_in_polygon_soup(merged_points, merged_polygons);
+    if(merged > 0) {
+      internal::Soup_edge e;
+      std::size_t v = 0;
+      if(!internal::soup_has_repeated_vertex(merged_polygons) &&
+         internal::count_non_manifold_soup_edges(merged_polygons, e) == 0 &&
+         internal::count_non_manifold_soup_vertices(merged_polygons, merged_points.size(), v) == 0) {
+        points.swap(merged_points);
+        polygons.swap(merged_polygons);
+        report.merged_duplicate_points = merged;
+        report.warnings.push_back(std::to_string(merged) + " points at the same position as another were merged");
+      } else {
+        report.unmerged_duplicate_points = merged;
+        report.warnings.push_back(std::to_string(merged) + " points at the same position as another were kept apart "
+                                  "(merging them would make the surface non-manifold)");
+      }
+    }
+  }
+
   // 4. manifoldness and orientation
   {
-    std::map<internal::Soup_edge, std::size_t> edge_faces;
-    for(const auto& poly : polygons)
-      for(std::size_t k = 0; k < poly.size(); ++k)
-        ++edge_faces[internal::make_soup_edge(poly[k], poly[(k + 1) % poly.size()])];
-    std::size_t bad = 0;
     internal::Soup_edge first;
-    for(const auto& e : edge_faces)
-      if(e.second > 2) { if(bad++ == 0) first = e.first; }
+    const std::size_t bad = internal::count_non_manifold_soup_edges(polygons, first);
     if(bad)
       throw Input_error(Input_error_code::non_manifold_edges,
                         quoted + ": " + std::to_string(bad) + " non-manifold edges (shared by more than two faces), first between vertices " +

@@ -1,5 +1,5 @@
-// Small analytic test meshes generated in code (plane patch, cylinder, cone, sphere, torus, cube),
-// for any MutableFaceGraph. Their exact areas, topologies and geodesics are known in closed form.
+// Small analytic test meshes generated in code (plane patch, cylinder, cone, sphere, torus, cube,
+// and the zero set of an implicit function extracted on a grid), for any MutableFaceGraph. Their exact areas, topologies and geodesics are known in closed form.
 #ifndef POISSON_REMESH_TEST_ANALYTIC_MESHES_H
 #define POISSON_REMESH_TEST_ANALYTIC_MESHES_H
 
@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace analytic {
@@ -148,6 +150,85 @@ inline Soup cube(std::size_t n, double a = 1)
     for(std::size_t j = 0; j < n; ++j)
       for(std::size_t i = 0; i < n; ++i) s.quad(id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
   }
+  return s;
+}
+
+/// The surface f = 0 of an implicit function, extracted on an n x n x n grid over the box [lo, hi]^3
+/// the way marching cubes does it, with each grid cell split into six tetrahedra (Kuhn's split, which
+/// conforms across cells) so that no case table is needed: one vertex per grid edge the surface
+/// crosses (linear interpolation), shared by the cells around that edge. The output has the defects
+/// of marching-cubes meshes: needle and cap triangles, vertices almost on top of each other where
+/// the surface passes near a grid point, valences from 3 to 12. Closed if f > 0 on the box's
+/// boundary; oriented with normals towards f > 0.
+template <class F>
+Soup iso_surface(const F& f, double lo, double hi, std::size_t n)
+{
+  Soup s;
+  const double h = (hi - lo) / double(n);
+  const std::size_t m = n + 1;
+  std::vector<double> value(m * m * m);
+  auto gid = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * m + j) * m + i; };
+  auto pos = [&](std::size_t g, int c) {
+    const std::size_t idx[3] = {g % m, (g / m) % m, g / (m * m)};
+    return lo + h * double(idx[c]);
+  };
+  for(std::size_t k = 0; k < m; ++k)
+    for(std::size_t j = 0; j < m; ++j)
+      for(std::size_t i = 0; i < m; ++i) {
+        double v = f(lo + h * double(i), lo + h * double(j), lo + h * double(k));
+        if(std::abs(v) < 1e-12) v = 1e-12; // no grid point exactly on the surface: no zero-area faces
+        value[gid(i, j, k)] = v;
+      }
+  std::unordered_map<std::uint64_t, std::size_t> on_edge;
+  auto crossing = [&](std::size_t a, std::size_t b) {
+    if(a > b) std::swap(a, b);
+    const std::uint64_t key = std::uint64_t(a) * std::uint64_t(m * m * m) + b;
+    auto it = on_edge.find(key);
+    if(it != on_edge.end()) return it->second;
+    const double t = value[a] / (value[a] - value[b]);
+    s.points.push_back({pos(a, 0) + t * (pos(b, 0) - pos(a, 0)), pos(a, 1) + t * (pos(b, 1) - pos(a, 1)),
+                        pos(a, 2) + t * (pos(b, 2) - pos(a, 2))});
+    on_edge.emplace(key, s.points.size() - 1);
+    return s.points.size() - 1;
+  };
+  // a triangle of crossings, turned so that its normal points from `in` towards `out`
+  auto triangle = [&](std::size_t p, std::size_t q, std::size_t r, const double dir[3]) {
+    const auto &P = s.points[p], &Q = s.points[q], &R = s.points[r];
+    const double u[3] = {Q[0] - P[0], Q[1] - P[1], Q[2] - P[2]}, w[3] = {R[0] - P[0], R[1] - P[1], R[2] - P[2]};
+    const double nrm[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    if(nrm[0] * dir[0] + nrm[1] * dir[1] + nrm[2] * dir[2] >= 0) s.triangles.push_back({p, q, r});
+    else s.triangles.push_back({p, r, q});
+  };
+  static const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for(std::size_t k = 0; k < n; ++k)
+    for(std::size_t j = 0; j < n; ++j)
+      for(std::size_t i = 0; i < n; ++i)
+        for(const auto& p : perms) {
+          // the tetrahedron corner, corner + e_a, corner + e_a + e_b, corner + (1,1,1)
+          std::size_t c[3] = {i, j, k};
+          std::size_t tet[4];
+          tet[0] = gid(c[0], c[1], c[2]);
+          for(int s2 = 0; s2 < 3; ++s2) { ++c[p[s2]]; tet[s2 + 1] = gid(c[0], c[1], c[2]); }
+          std::vector<std::size_t> in, out;
+          for(std::size_t g : tet) (value[g] < 0 ? in : out).push_back(g);
+          if(in.empty() || out.empty()) continue;
+          double dir[3] = {0, 0, 0};
+          for(int a = 0; a < 3; ++a) {
+            for(std::size_t g : out) dir[a] += pos(g, a) / double(out.size());
+            for(std::size_t g : in) dir[a] -= pos(g, a) / double(in.size());
+          }
+          if(in.size() == 1 || out.size() == 1) {
+            const std::vector<std::size_t>& one = in.size() == 1 ? in : out;
+            const std::vector<std::size_t>& three = in.size() == 1 ? out : in;
+            triangle(crossing(one[0], three[0]), crossing(one[0], three[1]), crossing(one[0], three[2]), dir);
+          } else {
+            // the quad in[0]-out[0], in[0]-out[1], in[1]-out[1], in[1]-out[0], split in two
+            const std::size_t q0 = crossing(in[0], out[0]), q1 = crossing(in[0], out[1]),
+                              q2 = crossing(in[1], out[1]), q3 = crossing(in[1], out[0]);
+            triangle(q0, q1, q2, dir);
+            triangle(q0, q2, q3, dir);
+          }
+        }
   return s;
 }
 

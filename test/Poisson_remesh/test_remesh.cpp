@@ -17,6 +17,7 @@
 #include <catch2/catch.hpp>
 
 #include <iostream>
+#include <sstream>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
@@ -247,5 +248,86 @@ TEST_CASE("several components, tiny ones included, and an open mesh with three b
     // the borders are kept up to the staircase of the holes' borders (one grid step, 1/40, is
     // 1.77% of the diagonal): measured 1.77%
     CHECK(*b.hausdorff < 0.025);
+  }
+}
+
+TEST_CASE("marching-cubes output and a surface of genus 16 are remeshed", "[remesh][robustness]")
+{
+  // Both extracted from implicit functions on a grid (analytic::iso_surface): needles and caps down
+  // to a fraction of a degree, near-coincident vertices, valences 3 to 12.
+  auto check = [](const Mesh& in, std::size_t target, long chi, double min_hausdorff_bound) {
+    const PR::Quality_report a = PR::quality_report(in);
+    REQUIRE(CGAL::is_closed(in));
+    REQUIRE(a.euler_characteristic == chi);
+    CHECK(a.min_angle < 1);         // the input really is marching-cubes-like
+    CHECK(a.mean_min_angle < 31);
+    Mesh out;
+    const auto run = PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(1u));
+    const PR::Quality_report b = PR::quality_report(out, in);
+    CHECK(CGAL::is_closed(out));
+    CHECK(b.number_of_components == 1);
+    CHECK(b.euler_characteristic == chi);
+    CHECK(run.number_of_leftover_input_vertices == 0);
+    CHECK(std::abs(double(b.number_of_vertices) - double(target)) < 0.05 * double(target));
+    CHECK(b.min_angle >= 30);       // measured 37.6 (torus), 35.3 (genus 16)
+    CHECK(b.mean_min_angle > 52);   // 53.5, 52.6
+    CHECK(b.irregular_share <= 0.26); // 19.1%, 25.4%
+    CHECK(*b.hausdorff < min_hausdorff_bound); // 0.31%, 0.68%
+    CHECK(b.number_of_self_intersecting_face_pairs == 0);
+    CHECK(vertices_off_input(out, in) < 1e-9);
+  };
+  SECTION("a torus from a 30^3 grid") {
+    auto f = [](double x, double y, double z) { const double q = std::sqrt(x * x + y * y) - 1.0; return q * q + z * z - 0.16; };
+    check(analytic::iso_surface(f, -1.6, 1.6, 30).to_mesh<Mesh>(), 1500, 0, 0.006);
+  }
+  SECTION("a plate with 4 x 4 holes (genus 16) from a 60^3 grid") {
+    auto f = [](double x, double y, double z) {
+      double v = (z / 0.12) * (z / 0.12) + std::pow(x / 1.25, 8) + std::pow(y / 1.25, 8) - 1;
+      for(double cx : {-0.75, -0.25, 0.25, 0.75})
+        for(double cy : {-0.75, -0.25, 0.25, 0.75}) v += 2 * std::exp(-((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 0.0225);
+      return v;
+    };
+    check(analytic::iso_surface(f, -1.4, 1.4, 60).to_mesh<Mesh>(), 3000, 2 - 2 * 16, 0.01);
+  }
+}
+
+TEST_CASE("a mesh whose triangles each have their own corners is merged and remeshed", "[remesh][robustness][read]")
+{
+  const auto dir = test_support::scratch_dir("duplicated_vertices");
+  SECTION("a sphere written as 3 points per triangle") {
+    const analytic::Soup s = analytic::sphere(40, 20);
+    std::ostringstream off;
+    off.precision(17);
+    off << "OFF\n" << 3 * s.triangles.size() << " " << s.triangles.size() << " 0\n";
+    for(const auto& t : s.triangles)
+      for(auto k : t) off << s.points[k][0] << " " << s.points[k][1] << " " << s.points[k][2] << "\n";
+    for(std::size_t f = 0; f < s.triangles.size(); ++f) off << "3 " << 3 * f << " " << 3 * f + 1 << " " << 3 * f + 2 << "\n";
+    Mesh in;
+    const PR::Read_report rr = PR::read_surface_mesh(test_support::write_text(dir / "soup.off", off.str()), in);
+    CHECK(rr.merged_duplicate_points == 3 * s.triangles.size() - s.points.size());
+    CHECK(rr.unmerged_duplicate_points == 0);
+    REQUIRE(num_vertices(in) == s.points.size());
+    REQUIRE(CGAL::is_closed(in));
+    Mesh out;
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(800).random_seed(1u));
+    const PR::Quality_report b = PR::quality_report(out, in);
+    CHECK(b.number_of_components == 1);
+    CHECK(b.euler_characteristic == 2);
+    CHECK(CGAL::is_closed(out));
+    CHECK(b.min_angle >= 30);
+    CHECK(b.mean_min_angle > 52);
+    CHECK(b.number_of_self_intersecting_face_pairs == 0);
+  }
+  SECTION("duplicates whose merge would pinch the surface are kept apart") {
+    // two tetrahedra touching at the origin, each with its own copy of that point
+    const std::string two = "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                            "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 4 5 6\n3 4 7 5\n3 5 7 6\n3 4 6 7\n";
+    Mesh m;
+    const PR::Read_report rr = PR::read_surface_mesh(test_support::write_text(dir / "pinch.off", two), m);
+    CHECK(rr.merged_duplicate_points == 0);
+    CHECK(rr.unmerged_duplicate_points == 1);
+    CHECK(num_vertices(m) == 8);
+    CHECK(PR::quality_report(m).number_of_components == 2);
+    CHECK(!rr.warnings.empty());
   }
 }
