@@ -11,6 +11,7 @@
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/Sampling/Boundary_sampler.h>
+#include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/sizing.h>
 
@@ -24,7 +25,8 @@ namespace Poisson_remesh {
 /// What a sampling run did.
 struct Poisson_disk_sampling_result
 {
-  double radius = 0;                 ///< r: samples are at least 2r apart (geodesic)
+  double radius = 0;                 ///< r: samples are at least 2r apart (geodesic); adaptive: the median disk radius
+  double min_radius = 0, max_radius = 0; ///< the range of the disk radius (equal to r for uniform density)
   std::size_t number_of_samples = 0;
   std::size_t number_of_corners = 0;
   std::size_t number_of_feature_samples = 0;
@@ -54,6 +56,33 @@ double sampling_radius_from_parameters(const TriangleMesh& tm, VPM vpm, const Na
   return disk_radius_from_vertex_count(area, n);
 }
 
+// the disk radius at each vertex for the `density` named parameter; empty for uniform density.
+// The field is scaled to the target vertex count (target_vertex_count, else the count that
+// target_edge_length or sampling_radius gives with uniform density, else the input's count).
+template <class TriangleMesh, class VPM, class NamedParameters>
+std::vector<double> vertex_radii_from_parameters(const TriangleMesh& tm, VPM vpm, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const auto density = choose_parameter(get_parameter(np, internal_np::density), Uniform_density());
+  if constexpr(is_uniform_density<decltype(density)>::value) {
+    return {};
+  } else {
+    const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(tm, CGAL::parameters::vertex_point_map(vpm)));
+    double n = double(choose_parameter(get_parameter(np, internal_np::target_vertex_count), 0));
+    if(!(n > 0)) {
+      const double r = sampling_radius_from_parameters(tm, vpm, np);
+      n = paper_rho * paper_rho * area / (2 * std::sqrt(3.0) * r * r);   // Eq. 1 solved for N
+    }
+    double min_edge = 0, max_edge = 0;
+    if constexpr(std::is_same<typename std::decay<decltype(density)>::type, Curvature_density>::value) {
+      min_edge = density.min_edge;
+      max_edge = density.max_edge;
+    }
+    return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm), n, min_edge, max_edge);
+  }
+}
+
 // the features as the sampler sees them at radius r: detect_features() with
 // `minimum_feature_length` defaulting to feature_length_in_radii * r
 template <class TriangleMesh, class NamedParameters>
@@ -76,20 +105,35 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Fe
     // corners are always kept; on a finer level they are already there and are refused
     if(sampler.insert(location_on_halfedge(h, 1.0, tm), Sample_kind::corner, !first_level)) ++result.number_of_corners;
   }
+  if(sampler.adaptive()) {
+    for(const auto& s : feature_sample_locations_with_spacing(tm, vpm, fs, [&](auto v) { return 2 * sampler.radius_at(v); }))
+      if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
+    return;
+  }
   for(const auto& s : feature_sample_locations(tm, vpm, fs, 2 * sampler.radius()))
     if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
 }
 
 // poisson_disk_sample() with the features already detected (the remesher shares them with the
 // tessellation)
+// (vertex_radii not empty: adaptive density, the disk radius at each vertex by vertex index;
+// `radius` is then their median)
 template <class TriangleMesh, class VPM, class OutputIterator>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
-                                                 double radius, unsigned int seed, OutputIterator out)
+                                                 double radius, unsigned int seed, OutputIterator out,
+                                                 const std::vector<double>& vertex_radii = std::vector<double>())
 {
   Poisson_disk_sampling_result result;
-  result.radius = radius;
+  result.radius = result.min_radius = result.max_radius = radius;
   Boundary_sampler<TriangleMesh, VPM> sampler(tm, vpm, seed);
-  sampler.set_radius(result.radius);
+  if(vertex_radii.empty()) {
+    sampler.set_radius(result.radius);
+  } else {
+    auto vim = CGAL::get_initialized_vertex_index_map(tm);
+    sampler.set_radius_field([&](typename boost::graph_traits<TriangleMesh>::vertex_descriptor v) { return vertex_radii[get(vim, v)]; });
+    result.min_radius = *std::min_element(vertex_radii.begin(), vertex_radii.end());
+    result.max_radius = *std::max_element(vertex_radii.begin(), vertex_radii.end());
+  }
   internal::sample_features(sampler, tm, vpm, fs, true, result);
   sampler.seed_components();
   sampler.fill();
@@ -109,6 +153,9 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
   Named parameters (all optional):
   - size, first given wins: `sampling_radius` (r), `target_edge_length` (2r), `target_vertex_count`
     (r from Eq. 1 with rho = 0.844); default: the input's vertex count
+  - `density` (default Uniform_density()): Curvature_density{...}, vertex_density(map) or
+    point_density(function) for adaptive sampling (§5): samples p, q at least r(p) + r(q) apart,
+    the field scaled to the target vertex count (see density_fields.h)
   - `random_seed` (CGAL, default 0): the same seed gives the same samples
   - features: `feature_policy` (default Feature_policy::detect), `sharp_angle` (60),
     `corner_angle` (60), `minimum_feature_length` (default feature_length_in_radii * r),
@@ -125,9 +172,10 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputI
   const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
   if(faces(tm).empty()) throw std::invalid_argument("poisson_disk_sample: the mesh has no faces");
 
-  Poisson_disk_sampling_result result;
-  result.radius = internal::sampling_radius_from_parameters(tm, vpm, np);
-  return internal::poisson_disk_sample(tm, vpm, internal::detect_features_at_radius(tm, result.radius, np), result.radius, seed, out);
+  const std::vector<double> vertex_radii = internal::vertex_radii_from_parameters(tm, vpm, np);
+  const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(tm, vpm, np)
+                                             : internal::quantile(vertex_radii, 0.5);
+  return internal::poisson_disk_sample(tm, vpm, internal::detect_features_at_radius(tm, radius, np), radius, seed, out, vertex_radii);
 }
 
 

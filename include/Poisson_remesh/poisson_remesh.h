@@ -40,6 +40,8 @@ struct Poisson_remesh_result
   Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
   `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
   `sharp_angle`, `corner_angle`, `minimum_feature_length`, `edge_is_constrained_map`),
+  `density` (Uniform_density() by default; Curvature_density{...}, vertex_density(map) or
+  point_density(function) for an adaptive remesh, §5: see density_fields.h),
   `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings) and
   `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features).
 */
@@ -61,7 +63,9 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
   if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
   auto t = now();
-  const double radius = internal::sampling_radius_from_parameters(input, in_vpm, np);
+  const std::vector<double> vertex_radii = internal::vertex_radii_from_parameters(input, in_vpm, np);
+  const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(input, in_vpm, np)
+                                             : internal::quantile(vertex_radii, 0.5);
   // one feature set for the sampler and the tessellation
   const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   result.seconds_features = since(t);
@@ -69,7 +73,7 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   t = now();
   std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
   const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
-  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples));
+  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples), vertex_radii);
   result.seconds_sampling = since(t);
 
   t = now();
@@ -102,10 +106,32 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
   Relaxation_settings settings;
   settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value)
-    result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
-  else   // the user's model of the Relaxer concept
+  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
+    if(vertex_radii.empty()) {
+      result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
+    } else {
+      // adaptive density: Eq. 6 weights with the density at the samples (Eq. 1: ~ 1 / r^2);
+      // vertices the relaxer adds take the mean of their neighbours
+      auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
+      for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
+      for(const auto& v : tessellation.vertices)
+        if(v.sample != tessellation.no_sample) put(density_map, v.vertex, 1.0 / (samples[v.sample].radius * samples[v.sample].radius));
+      auto density = [&](vertex_descriptor v) {
+        const double d = get(density_map, v);
+        if(d > 0) return d;
+        double sum = 0;
+        int n = 0;
+        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, output), output))
+          if(get(density_map, w) > 0) { sum += get(density_map, w); ++n; }
+        const double mean = n ? sum / n : 1.0;
+        put(density_map, v, mean);
+        return mean;
+      };
+      result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
+    }
+  } else {   // the user's model of the Relaxer concept
     result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
+  }
   result.seconds_relaxation = since(t);
   return result;
 }

@@ -407,6 +407,159 @@ TEST_CASE("samples are at least 2r apart and cover curved surfaces (judge: Surfa
   }
 }
 
+// ------------------------------------------------------------------ adaptive sampling (§5)
+namespace {
+
+// the disk radius at a location, interpolated from the vertex radii (Eq. 3), as the judge sees it
+double radius_at(const Mesh& m, const std::vector<double>& vertex_radius, const Oracle::Face_location& loc)
+{
+  const auto h = halfedge(loc.first, m);
+  const Mesh::Vertex_index v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
+  double r = 0;
+  for(int i = 0; i < 3; ++i) r += loc.second[i] * vertex_radius[std::size_t(v[i])];
+  return r;
+}
+
+// Checks the adaptive rule with `distance(sample_or_location, sample)`: every pair (corner pairs
+// excepted) d(p, q) >= r(p) + r(q), and every vertex and `points` random points x within
+// r(x) + r(p) of a sample p, both to 1e-6 relative. Returns {smallest d / (rp + rq), largest
+// d / (rx + rp) of the nearest}.
+template <class Distance>
+std::pair<double, double> check_adaptive_rule(const Mesh& m, const std::vector<Sample>& s, const std::vector<double>& vertex_radius,
+                                              std::size_t points, Distance distance)
+{
+  for(const Sample& x : s) CHECK(x.radius == Approx(radius_at(m, vertex_radius, x.location)).epsilon(1e-12));
+  double smallest = HUGE_VAL;
+  for(std::size_t i = 0; i < s.size(); ++i)
+    for(std::size_t j = i + 1; j < s.size(); ++j) {
+      if(s[i].kind == PR::Sample_kind::corner && s[j].kind == PR::Sample_kind::corner) continue;
+      const double lim = s[i].radius + s[j].radius;
+      if(CGAL::squared_distance(s[i].point, s[j].point) >= lim * lim) continue;
+      smallest = std::min(smallest, distance(s[i].location, s[j]) / lim);
+    }
+  std::vector<Oracle::Face_location> queries = random_locations(m, points, 5);
+  for(auto v : vertices(m)) {
+    auto h = halfedge(v, m);
+    if(is_border(h, m)) h = prev(opposite(h, m), m);
+    queries.push_back(PR::location_on_halfedge(h, 1.0, m));
+  }
+  double largest = 0;
+  for(const auto& q : queries) {
+    const double rx = radius_at(m, vertex_radius, q);
+    const Point p = PMP::construct_point(q, m);
+    double nearest = 2;
+    for(const Sample& x : s) {
+      const double lim = rx + x.radius;
+      if(CGAL::squared_distance(p, x.point) > lim * lim * 1.0001) continue;
+      nearest = std::min(nearest, distance(q, x) / lim);
+    }
+    largest = std::max(largest, nearest);
+  }
+  CHECK(smallest >= 1 - 1e-6);
+  CHECK(largest <= 1 + 1e-6);
+  return {smallest, largest};
+}
+
+template <class Field>
+std::vector<Sample> adaptive_sample(const Mesh& m, const Field& field, double n, unsigned seed, std::vector<double>& vertex_radius,
+                                    PR::Poisson_disk_sampling_result* result = nullptr)
+{
+  std::vector<Sample> s;
+  auto r = PR::poisson_disk_sample(m, std::back_inserter(s), PR::parameters::target_vertex_count(n).random_seed(seed).density(field));
+  vertex_radius = PR::vertex_disk_radii(m, m.points(), PR::vertex_densities(field, m, m.points()), n);
+  if(result) *result = r;
+  return s;
+}
+
+} // namespace
+
+TEST_CASE("adaptive samples keep d(p, q) >= r(p) + r(q) and cover the surface by that rule", "[sampling][adaptive]")
+{
+  std::vector<double> vr;
+  SECTION("a plane with a density ramp (density 1 to 4 across; judge: Euclidean distance)") {
+    const Mesh m = analytic::plane(20, 20).to_mesh<Mesh>();
+    PR::Poisson_disk_sampling_result r;
+    const auto s = adaptive_sample(m, PR::point_density([](const Point& p) { return 1 + 3 * p.x(); }), 400, 3, vr, &r);
+    check_on_surface(m, s);
+    CHECK(r.max_radius / r.min_radius == Approx(2).epsilon(0.01));   // radius ~ 1 / sqrt(density)
+    CHECK(std::abs(double(s.size()) - 400) < 0.1 * 400);   // 368: an open square loses samples along its border
+    const auto sl = check_adaptive_rule(m, s, vr, 5000, [&](const Oracle::Face_location& a, const Sample& b) {
+      return std::sqrt(CGAL::squared_distance(PMP::construct_point(a, m), b.point));
+    });
+    CHECK(sl.first < 1.01);   // samples on the available boundary: some pairs at exactly r(p) + r(q)
+    // denser where the density is higher: more samples in the right half
+    std::size_t right = 0;
+    for(const Sample& x : s) if(x.point.x() > 0.5) ++right;
+    CHECK(double(right) > 1.6 * double(s.size() - right));
+    CHECK(r.statistics.open_iso_curves == 0);
+  }
+  SECTION("an open cylinder with a ramp along its axis (judge: the unrolled strip)") {
+    const std::size_t n = 40;
+    const Mesh m = analytic::cylinder(n, 20).to_mesh<Mesh>();
+    const auto s = adaptive_sample(m, PR::point_density([](const Point& p) { return 1 + 1.5 * p.z(); }), 500, 5, vr);
+    check_on_surface(m, s);
+    const double side = 2 * std::sin(M_PI / n), perimeter = n * side;
+    auto position = [&](const Point& p) {
+      double t = std::atan2(p.y(), p.x());
+      if(t < 0) t += 2 * M_PI;
+      const std::size_t k = std::min(n - 1, std::size_t(t / (2 * M_PI / n)));
+      const Point a(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n), 0);
+      return k * side + std::sqrt(CGAL::squared_distance(a, Point(p.x(), p.y(), 0)));
+    };
+    check_adaptive_rule(m, s, vr, 5000, [&](const Oracle::Face_location& a, const Sample& b) {
+      const Point p = PMP::construct_point(a, m);
+      double ds = std::abs(position(p) - position(b.point));
+      ds = std::min(ds, perimeter - ds);
+      return std::hypot(ds, p.z() - b.point.z());
+    });
+  }
+  SECTION("elephant with the curvature density (judges: the exact oracle, Surface_mesh_shortest_path spot checks)") {
+    Mesh m;
+    PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), m);
+    const auto s = adaptive_sample(m, PR::Curvature_density(), 1200, 11, vr);
+    check_on_surface(m, s);
+    CHECK(std::abs(double(s.size()) - 1200) < 0.05 * 1200);
+    Oracle o(m, m.points());
+    const Oracle::Face_location* last = nullptr;
+    const double rmax = *std::max_element(vr.begin(), vr.end());
+    check_adaptive_rule(m, s, vr, 3000, [&](const Oracle::Face_location& a, const Sample& b) {
+      if(last == nullptr || last->first != a.first || last->second != a.second) {
+        o.propagate(a, 2.01 * rmax);
+        last = &a;
+      }
+      const auto d = o.distance(b.location);
+      return d ? *d : HUGE_VAL;
+    });
+    // Surface_mesh_shortest_path spot checks: 15 samples against their neighbours
+    std::mt19937 g(13);
+    for(int k = 0; k < 15; ++k) {
+      const Sample& a = s[g() % s.size()];
+      SMSP smsp(m);
+      smsp.add_source_point(a.location.first, judge_coordinates(a.location.second));
+      smsp.build_sequence_tree();
+      for(const Sample& b : s) {
+        const double lim = a.radius + b.radius;
+        if(&a == &b || CGAL::squared_distance(a.point, b.point) >= lim * lim) continue;
+        if(a.kind == PR::Sample_kind::corner && b.kind == PR::Sample_kind::corner) continue;
+        CHECK(smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first >= lim * (1 - 1e-6));
+      }
+    }
+    // and 15 random points: some sample p within r(x) + r(p)
+    for(const auto& q : random_locations(m, 15, 17)) {
+      SMSP smsp(m);
+      smsp.add_source_point(q.first, judge_coordinates(q.second));
+      smsp.build_sequence_tree();
+      const Point p = PMP::construct_point(q, m);
+      const double rx = radius_at(m, vr, q);
+      double nearest = HUGE_VAL;
+      for(const Sample& b : s)
+        if(CGAL::squared_distance(p, b.point) <= CGAL::square(rx + b.radius))
+          nearest = std::min(nearest, smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first / (rx + b.radius));
+      CHECK(nearest <= 1 + 1e-6);
+    }
+  }
+}
+
 TEST_CASE("the same seed gives the same samples, another seed others", "[sampling]")
 {
   Mesh m;

@@ -96,9 +96,50 @@ struct Arc_crossing
   bool reliable;
 };
 
+/// The same for conic arcs (adaptive density, §5.1): no closed form worth having (two conics meet
+/// in up to four points, a quartic), so the level function of b is followed along a, sign changes
+/// are bracketed on 64 steps per turn and refined by bisection to 1e-15 of a's parameter.
+template <class Arc>
+void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
+{
+  const double span = a.theta_end - a.theta_start;
+  if(!(span > 0)) return;
+  const int n = std::max(8, int(std::ceil(span / (two_pi / 64))));
+  auto f = [&](double t) { return b.level_function(a.point_2(t)); };
+  const double span_b = b.theta_end - b.theta_start, tol = 1e-12;
+  double t0 = 0, f0 = f(0.0);
+  for(int i = 1; i <= n; ++i) {
+    const double t1 = double(i) / double(n), f1 = f(t1);
+    if((f0 < 0) != (f1 < 0)) {
+      double lo = t0, hi = t1, flo = f0;
+      for(int it = 0; it < 64 && hi - lo > 1e-15; ++it) {
+        const double mid = 0.5 * (lo + hi), fm = f(mid);
+        if((fm < 0) == (flo < 0)) { lo = mid; flo = fm; } else hi = mid;
+      }
+      const double t = 0.5 * (lo + hi);
+      const std::array<double, 2> p = a.point_2(t);
+      double db = std::atan2(p[1] - b.center[1], p[0] - b.center[0]) - b.theta_start;
+      db -= two_pi * std::floor(db / two_pi);
+      if(!(db > span_b + tol && db < two_pi - tol)) {   // on b
+        const double e = 1e-7;
+        const std::array<double, 2> p0 = a.point_2(std::max(0.0, t - e)), p1 = a.point_2(std::min(1.0, t + e));
+        const double tx = p1[0] - p0[0], ty = p1[1] - p0[1];
+        const double dx = p[0] - b.center[0], dy = p[1] - b.center[1], d = std::hypot(dx, dy);
+        const double gx = (d > 0 ? dx / d : 0) - b.gradient[0], gy = (d > 0 ? dy / d : 0) - b.gradient[1];
+        const double norms = std::hypot(tx, ty) * std::hypot(gx, gy);
+        const double sine = norms > 0 ? std::abs(tx * gx + ty * gy) / norms : 0;
+        out.push_back({t, f0 >= 0, sine > 1e-6});   // from outside b (f > 0) to inside: entering
+      }
+    }
+    t0 = t1;
+    f0 = f1;
+  }
+}
+
 template <class Arc>
 void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
 {
+  if(a.is_conic() || b.is_conic()) { conic_arc_crossings(a, b, out); return; }
   const double dx = b.center[0] - a.center[0], dy = b.center[1] - a.center[1];
   const double d2 = dx * dx + dy * dy, d = std::sqrt(d2);
   const double ra = a.radius, rb = b.radius;
@@ -148,7 +189,8 @@ Arc sub_arc(const Arc& a, double t0, double t1)
 
 } // namespace internal
 
-/// The available boundary of circular arcs (BoundaryCurve model for uniform density).
+/// The available boundary of circular arcs (BoundaryCurve model for uniform density) and of
+/// conic arcs (adaptive density, §5.1: arcs whose `gradient` is not zero).
 template <class TriangleMesh, class Arc>
 class Circular_available_boundary
 {

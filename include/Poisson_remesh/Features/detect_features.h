@@ -526,6 +526,60 @@ feature_sample_locations(const TriangleMesh& tm, VPM vpm, const Feature_set<Tria
   return out;
 }
 
+/*!
+  the same with a spacing that varies along the curves (adaptive density, §5): `spacing(v)` at the
+  vertices, linear along each edge. A curve gets n = floor(T) equal steps of T = the integral of
+  ds / spacing(s) along it (the curve's length in local spacings), so consecutive samples are about
+  one local spacing apart.
+*/
+template <class TriangleMesh, class VPM, class VertexSpacing>
+std::vector<Feature_sample<TriangleMesh, typename boost::property_traits<VPM>::value_type>>
+feature_sample_locations_with_spacing(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
+                                      VertexSpacing spacing)
+{
+  typedef typename boost::property_traits<VPM>::value_type Point_3;
+  std::vector<Feature_sample<TriangleMesh, Point_3>> out;
+  // the number of local spacings along halfedge h (spacing linear from a to b), and the arc
+  // length at which that count reaches tau
+  auto spacings = [&](double l, double a, double b) {
+    return std::abs(b - a) < 1e-9 * a ? l / a : l / (b - a) * std::log(b / a);
+  };
+  auto length_at = [&](double l, double a, double b, double tau) {
+    return std::abs(b - a) < 1e-9 * a ? tau * a : a * l / (b - a) * std::expm1(tau * (b - a) / l);
+  };
+  for(std::size_t ci = 0; ci < fs.curves.size(); ++ci) {
+    const auto& c = fs.curves[ci];
+    std::vector<double> tau_of_edge;
+    double T = 0;
+    for(auto h : c.halfedges) {
+      const double a = spacing(source(h, tm)), b = spacing(target(h, tm));
+      if(!(a > 0) || !(b > 0)) throw std::invalid_argument("feature_sample_locations_with_spacing: spacing must be positive");
+      tau_of_edge.push_back(spacings(internal::edge_length(h, tm, vpm), a, b));
+      T += tau_of_edge.back();
+    }
+    const std::size_t n = std::size_t(std::floor(T));
+    std::size_t count;
+    double step;
+    if(c.closed) { count = std::max<std::size_t>(1, n); step = T / double(count); }
+    else { if(n < 2) continue; count = n - 1; step = T / double(n); }
+    double next_tau = c.closed ? 0.0 : step, tau0 = 0;
+    std::size_t placed = 0, k = 0;
+    for(auto h : c.halfedges) {
+      const double l = internal::edge_length(h, tm, vpm), a = spacing(source(h, tm)), b = spacing(target(h, tm));
+      const double te = tau_of_edge[k++];
+      while(placed < count && next_tau <= tau0 + te + 1e-12 * T) {
+        const double t = l > 0 ? std::min(1.0, std::max(0.0, length_at(l, a, b, next_tau - tau0) / l)) : 0.0;
+        auto loc = location_on_halfedge(h, t, tm);
+        out.push_back({loc, CGAL::Polygon_mesh_processing::construct_point(loc, tm, CGAL::parameters::vertex_point_map(vpm)), ci});
+        ++placed;
+        next_tau += step;
+      }
+      tau0 += te;
+    }
+  }
+  return out;
+}
+
 } // namespace Poisson_remesh
 
 #endif // POISSON_REMESH_FEATURES_DETECT_FEATURES_H

@@ -79,17 +79,39 @@ namespace Poisson_remesh {
 // ---------------------------------------------------------------------------
 
 /// One piece of an iso-distance curve, contained in a single face.
-/// It is either a circular arc (exact oracle) or a straight segment
+/// It is either a circular arc (exact oracle, uniform density), a conic arc
+/// (exact oracle, adaptive density: paper §5.1, Eq. 4-5) or a straight segment
 /// (`is_segment == true`, approximate oracle).  All 2D quantities are given
 /// in the face-local 2D frame described at the top of this file.
+///
+/// Conic arcs: the points x with |x - center| = radius + gradient . (x - center),
+/// in polar form around `center` rho(theta) = radius / (1 - gradient . u(theta)),
+/// u(theta) = (cos theta, sin theta): an ellipse with a focus at `center` and
+/// eccentricity |gradient| < 1.  A circle is the case gradient = 0.
 template <class FaceDescriptor, class Point3>
 struct Iso_arc
 {
   FaceDescriptor face;
-  /// circle center: the unfolded (pseudo-)source in the face frame
+  /// circle center / conic focus: the unfolded (pseudo-)source in the face frame
   std::array<double, 2> center{{0., 0.}};
-  /// circle radius, i.e. `R - sigma`
+  /// circle radius, i.e. `R - sigma`; for a conic its semi-latus rectum
   double radius = 0.;
+  /// the gradient of the disk radius r(x) in the face (Eq. 3): zero for a circle
+  std::array<double, 2> gradient{{0., 0.}};
+
+  bool is_conic() const { return gradient[0] != 0. || gradient[1] != 0.; }
+  /// distance from the center to the curve in direction theta
+  double rho(double th) const
+  {
+    if(!is_conic()) return radius;
+    return radius / (1. - gradient[0] * std::cos(th) - gradient[1] * std::sin(th));
+  }
+  /// < 0 inside the region the arc bounds (closer to the source than the level), > 0 outside
+  double level_function(const std::array<double, 2>& x) const
+  {
+    const double dx = x[0] - center[0], dy = x[1] - center[1];
+    return std::hypot(dx, dy) - radius - gradient[0] * dx - gradient[1] * dy;
+  }
   /// geodesic distance from the source to `center` (the pseudo-source)
   double sigma = 0.;
   /// counter-clockwise angular range, `theta_start <= theta_end <= theta_start + 2 pi`
@@ -108,7 +130,8 @@ struct Iso_arc
       return {{segment_start[0] + t * (segment_end[0] - segment_start[0]),
                segment_start[1] + t * (segment_end[1] - segment_start[1])}};
     const double th = theta_start + t * (theta_end - theta_start);
-    return {{center[0] + radius * std::cos(th), center[1] + radius * std::sin(th)}};
+    const double r = rho(th);
+    return {{center[0] + r * std::cos(th), center[1] + r * std::sin(th)}};
   }
   /// barycentric coordinates (w.r.t. v0, v1, v2) of the point of parameter `t`
   std::array<double, 3> barycentric(double t) const
@@ -133,7 +156,25 @@ struct Iso_arc
   {
     if(is_segment)
       return std::hypot(segment_end[0] - segment_start[0], segment_end[1] - segment_start[1]);
-    return radius * (theta_end - theta_start);
+    if(!is_conic()) return radius * (theta_end - theta_start);
+    // |d/dtheta (rho u)| = sqrt(rho^2 + rho'^2), integrated by 4-point Gauss-Legendre on pieces
+    // of at most pi/8 (relative error < 1e-9 for eccentricities up to 0.9)
+    const double span = theta_end - theta_start;
+    const int pieces = 1 + int(span / (3.14159265358979323846 / 8.));
+    const double h = span / pieces;
+    static const double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+    static const double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+    double total = 0.;
+    for(int k = 0; k < pieces; ++k)
+      for(int i = 0; i < 4; ++i) {
+        const double th = theta_start + h * (k + 0.5 + 0.5 * xg[i]);
+        const double c = std::cos(th), s = std::sin(th);
+        const double den = 1. - gradient[0] * c - gradient[1] * s;
+        const double r = radius / den;
+        const double dr = -radius * (gradient[0] * s - gradient[1] * c) / (den * den);
+        total += 0.5 * h * wg[i] * std::sqrt(r * r + dr * dr);
+      }
+    return total;
   }
 };
 
@@ -627,7 +668,33 @@ public:
   std::vector<Iso_curve> iso_curve(double R) const
   {
     std::vector<Iso_arc> arcs;
-    extract_iso_arcs(R, arcs);
+    extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs);
+    return chain_iso_arcs(arcs);
+  }
+
+  /// The available boundary of adaptive sampling (Section 5.1, Eq. 4-5): the points x with
+  /// d(x) = r0 + r(x), where r(x) is the disk radius interpolated linearly inside each face from
+  /// `vertex_radius(v)` at its vertices (Eq. 3), as ordered chains of conic arcs (ellipses with a
+  /// focus at the unfolded source).  The propagation radius must be at least r0 + max r(x) over
+  /// the region where d(x) <= r0 + r(x).  Faces where |grad r| >= 0.95 (a radius changing almost
+  /// as fast as the distance, possible only on needle faces) use a gradient shortened to 0.95.
+  template <class VertexRadius>
+  std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const
+  {
+    std::vector<Iso_arc> arcs;
+    extract_iso_arcs([&](int f) {
+      const double rv[3] = {vertex_radius(m.vertex_of[m.fv[3 * f]]), vertex_radius(m.vertex_of[m.fv[3 * f + 1]]),
+                            vertex_radius(m.vertex_of[m.fv[3 * f + 2]])};
+      const double l0 = m.flayout[3 * f], x2 = m.flayout[3 * f + 1], y2 = m.flayout[3 * f + 2];
+      Vec2 a{0., 0.};
+      if(l0 > 0. && y2 > 0.) {
+        a.x = (rv[1] - rv[0]) / l0;
+        a.y = (rv[2] - rv[0] - a.x * x2) / y2;
+      }
+      const double na = internal::norm(a);
+      if(na > 0.95) a = (0.95 / na) * a;
+      return Face_level{a, r0 + (l0 > 0. && y2 > 0. ? rv[0] : (rv[0] + rv[1] + rv[2]) / 3.)};
+    }, arcs);
     return chain_iso_arcs(arcs);
   }
 
@@ -1191,6 +1258,63 @@ private:
     out.push_back(base - phi);
   }
 
+  /// The level of an iso-curve inside a face: level(x) = a . x + b in the face frame (a = 0: a
+  /// constant level, circular arcs).
+  struct Face_level
+  {
+    Vec2 a;
+    double b;
+    double at(Vec2 x) const { return internal::dot(a, x) + b; }
+  };
+
+  /// conic |x - c| = p + a . (x - c) (|a| < 1, p > 0) and the line through P and Q: the polar
+  /// angles around c of the (at most two) meeting points
+  static void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vector<double>& out)
+  {
+    const Vec2 d = Q - P;
+    const double L = internal::norm(d);
+    if(!(L > 0.)) return;
+    const Vec2 n{-d.y / L, d.x / L};
+    // rho n.u = k on the line, rho (1 - a.u) = p on the conic: (p n + k a) . u = k
+    const double k = internal::dot(n, P - c);
+    const Vec2 w = p * n + k * a;
+    const double W = internal::norm(w);
+    if(!(W > 0.) || std::abs(k) > W) return;
+    const double base = std::atan2(w.y, w.x), delta = std::acos((std::max)(-1., (std::min)(1., k / W)));
+    out.push_back(base + delta);
+    out.push_back(base - delta);
+  }
+
+  /// conic (c1, p1) and conic (c2, p2), same gradient a: polar angles around c1 of their meeting
+  /// points, by sign changes of the second conic's level function along the first (64 steps a
+  /// turn) refined by bisection
+  static void conic_conic_angles(Vec2 c1, double p1, Vec2 c2, double p2, Vec2 a, std::vector<double>& out)
+  {
+    auto point = [&](double th) {
+      const Vec2 u{std::cos(th), std::sin(th)};
+      return c1 + (p1 / (1. - internal::dot(a, u))) * u;
+    };
+    auto level = [&](double th) {
+      const Vec2 x = point(th) - c2;
+      return internal::norm(x) - p2 - internal::dot(a, x);
+    };
+    const int n = 64;
+    double t0 = 0., f0 = level(0.);
+    for(int i = 1; i <= n; ++i) {
+      const double t1 = 2. * internal::kPi * double(i) / double(n), f1 = level(t1);
+      if((f0 < 0.) != (f1 < 0.)) {
+        double lo = t0, hi = t1, flo = f0;
+        for(int it = 0; it < 64 && hi - lo > 1e-15; ++it) {
+          const double mid = 0.5 * (lo + hi), fm = level(mid);
+          if((fm < 0.) == (flo < 0.)) { lo = mid; flo = fm; } else hi = mid;
+        }
+        out.push_back(0.5 * (lo + hi));
+      }
+      t0 = t1;
+      f0 = f1;
+    }
+  }
+
   /// Distance generators of face f whose disk of radius R - sigma meets the face.
   void collect_generators(int f, double R, std::vector<Generator>& gens) const
   {
@@ -1228,12 +1352,15 @@ private:
     }
   }
 
-  /// For every face near the propagated region, the circle of radius R - sigma
-  /// of every generator is cut at its intersections with the face edges, the
-  /// wedge boundaries and the other generators' circles; a piece is kept when
-  /// its midpoint lies in the face, in the generator's wedge, and no other
-  /// generator gives a distance < R there (artificial arcs are trimmed).
-  void extract_iso_arcs(double R, std::vector<Iso_arc>& arcs) const
+  /// For every face near the propagated region, the curve of every generator
+  /// at the face's level (the circle of radius R - sigma for a constant level
+  /// R, a conic for a level linear in the face) is cut at its intersections
+  /// with the face edges, the wedge boundaries and the other generators'
+  /// curves; a piece is kept when its midpoint lies in the face, in the
+  /// generator's wedge, and no other generator gives a distance below the
+  /// level there (artificial arcs are trimmed).
+  template <class LevelOfFace>
+  void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs) const
   {
     // faces to examine: around reached vertices and on both sides of edges
     // holding windows (sorted list, no O(|F|) storage: iso_curve stays cheap
@@ -1250,42 +1377,75 @@ private:
     std::vector<Generator> gens;
     std::vector<double> angles;
     std::vector<std::pair<double, double> > kept;
-    const double tie = 1e-11 * (std::max)(R, m.diag * 1e-6);
     for(int f : faces_to_visit)
     {
-      // faces entirely closer than R (d(p) <= d(v_i) + |p v_i|) have no arc
+      const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+      const Face_level level = level_of_face(f);
+      const bool conic = level.a.x != 0. || level.a.y != 0.;
+      double Lmin = internal::kInf, Lmax = -internal::kInf;
+      for(int i = 0; i < 3; ++i)
+      {
+        Lmin = (std::min)(Lmin, level.at(P[i]));
+        Lmax = (std::max)(Lmax, level.at(P[i]));
+      }
+      const double tie = 1e-11 * (std::max)(Lmax, m.diag * 1e-6);
+      // faces entirely closer than the level (d(p) <= d(v_i) + |p v_i|) have no arc
       double dmin = internal::kInf, lmax = 0.;
       for(int i = 0; i < 3; ++i)
       {
         dmin = (std::min)(dmin, m_dist[m.fv[3 * f + i]]);
         lmax = (std::max)(lmax, m.edge_length(3 * f + i));
       }
-      if(dmin + lmax < R) continue;
-      collect_generators(f, R, gens);
+      if(dmin + lmax < Lmin) continue;
+      collect_generators(f, Lmax, gens);
       if(gens.empty()) continue;
-      const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+      // the curve of generator g: |x - c| = r + a . (x - c), r = level(c) - sigma (a circle of
+      // radius R - sigma when the level is constant)
+      auto curve_radius = [&](const Generator& g) { return level.at(g.c) - g.sigma; };
+      auto curve_point = [&](const Generator& g, double r, double th) {
+        const Vec2 u{std::cos(th), std::sin(th)};
+        return g.c + (conic ? r / (1. - internal::dot(level.a, u)) : r) * u;
+      };
       for(std::size_t gi = 0; gi < gens.size(); ++gi)
       {
         const Generator& g = gens[gi];
-        const double r = R - g.sigma;
+        const double r = curve_radius(g);
         if(!(r > 0.)) continue;
-        // quick rejection: circle misses the triangle or contains it
-        double dmax = 0.;
-        for(int i = 0; i < 3; ++i) dmax = (std::max)(dmax, internal::norm(P[i] - g.c));
-        if(dmax < r) continue;
+        // quick rejection: the curve contains the triangle
+        bool contains = true;
+        for(int i = 0; i < 3 && contains; ++i)
+        {
+          const Vec2 x = P[i] - g.c;
+          contains = internal::norm(x) - r - internal::dot(level.a, x) < 0.;
+        }
+        if(contains) continue;
         angles.clear();
-        for(int i = 0; i < 3; ++i) circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles);
-        if(angles.empty() && !inside_face(f, g.c + r * Vec2{1., 0.})) continue;
+        for(int i = 0; i < 3; ++i)
+        {
+          if(conic) conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
+          else circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles);
+        }
+        if(angles.empty() && !inside_face(f, curve_point(g, r, 0.))) continue;
         for(std::size_t hi = 0; hi < gens.size(); ++hi)
         {
           const Generator& h = gens[hi];
           if(h.window != nullptr)
           {
             const Vec2 a = h.eo + h.window->b0 * h.eu, b = h.eo + h.window->b1 * h.eu;
-            circle_line_angles(g.c, r, h.c, a, angles);
-            circle_line_angles(g.c, r, h.c, b, angles);
+            if(conic)
+            {
+              conic_line_angles(g.c, r, level.a, h.c, a, angles);
+              conic_line_angles(g.c, r, level.a, h.c, b, angles);
+            }
+            else
+            {
+              circle_line_angles(g.c, r, h.c, a, angles);
+              circle_line_angles(g.c, r, h.c, b, angles);
+            }
           }
-          if(hi != gi) circle_circle_angles(g.c, r, h.c, R - h.sigma, angles);
+          if(hi == gi) continue;
+          if(conic) conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
+          else circle_circle_angles(g.c, r, h.c, curve_radius(h), angles);
         }
         for(double& a : angles)
         {
@@ -1303,15 +1463,16 @@ private:
           const double a1 = (i + 1 < na) ? angles[i + 1] : angles[0] + 2. * internal::kPi;
           if(!(a1 - a0 > 1e-13)) continue;
           const double am = 0.5 * (a0 + a1);
-          const Vec2 p = g.c + r * Vec2{std::cos(am), std::sin(am)};
+          const Vec2 p = curve_point(g, r, am);
           if(!inside_face(f, p)) continue;
           if(!(generator_value(g, p) < internal::kInf)) continue;
+          const double L = level.at(p);
           bool ok = true;
           for(std::size_t hi = 0; hi < gens.size() && ok; ++hi)
           {
             if(hi == gi) continue;
             const double dh = generator_value(gens[hi], p);
-            if(dh < R - tie || (dh <= R + tie && hi < gi)) ok = false;
+            if(dh < L - tie || (dh <= L + tie && hi < gi)) ok = false;
           }
           if(!ok) continue;
           if(!kept.empty() && std::abs(kept.back().second - a0) < 1e-15)
@@ -1327,11 +1488,13 @@ private:
         }
         for(const auto& I : kept)
         {
-          if(!(r * (I.second - I.first) > 1e-12 * R)) continue;
+          const double rm = conic ? internal::norm(curve_point(g, r, 0.5 * (I.first + I.second)) - g.c) : r;
+          if(!(rm * (I.second - I.first) > 1e-12 * Lmax)) continue;
           Iso_arc arc;
           arc.face = m.face_of[f];
           arc.center = {{g.c.x, g.c.y}};
           arc.radius = r;
+          arc.gradient = {{level.a.x, level.a.y}};
           arc.sigma = g.sigma;
           arc.theta_start = I.first;
           arc.theta_end = I.second;

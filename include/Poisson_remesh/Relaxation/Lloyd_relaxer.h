@@ -124,6 +124,25 @@ public:
   Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
                               NewVertex new_vertex) const
   {
+    return relax(mesh, is_feature, is_corner, s, new_vertex, Unit_density());
+  }
+
+  /// Uniform density for the Lloyd centroids.
+  struct Unit_density
+  {
+    template <class V> double operator()(V) const { return 1.0; }
+  };
+
+  /// As above with a density (adaptive remeshing, Eq. 6): `vertex_density(v)` > 0 at the output's
+  /// vertices, linear over each triangle; the Lloyd target of a vertex is the centroid of its
+  /// triangles' centroids weighted by area times their mean density.
+  template <class Mesh, class IsFeatureEdge, class IsCorner, class NewVertex, class VertexDensity>
+  Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
+                              NewVertex new_vertex, VertexDensity vertex_density) const
+  {
+    auto lloyd_pass = [&](Mesh& m, IsFeatureEdge f, IsCorner c, Relaxation_statistics& st) {
+      this->lloyd_pass(m, f, c, st, vertex_density);
+    };
     Relaxation_statistics stats;
     for(unsigned int it = 0; it < s.iterations; ++it) {
       lloyd_pass(mesh, is_feature, is_corner, stats);
@@ -148,6 +167,14 @@ public:
 
   Point_3 project_on_surface(const Point_3& p) const { return faces_.closest_point(p); }
   Point_3 project_on_features(const Point_3& p) const { return segments_.empty() ? project_on_surface(p) : segment_tree_.closest_point(p); }
+  /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
+  /// project_on_features), near p: the search starts from it instead of a k-d tree query, which
+  /// makes projections of moving vertices cheaper (the result is the same closest point).
+  Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return faces_.closest_point(p, hint); }
+  Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
+  {
+    return segments_.empty() ? project_on_surface(p, hint) : segment_tree_.closest_point(p, hint);
+  }
 
 private:
   static double angle(const Point_3& a, const Point_3& o, const Point_3& b)
@@ -178,9 +205,24 @@ private:
   template <class Mesh>
   bool lloyd_target(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, Point_3& target) const
   {
+    return lloyd_target(v, m, target, Unit_density());
+  }
+
+  template <class Mesh, class VertexDensity>
+  bool lloyd_target(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, Point_3& target,
+                    VertexDensity vertex_density) const
+  {
+    constexpr bool uniform = std::is_same<VertexDensity, Unit_density>::value;
     std::vector<Point_3> ring;
-    for(auto h : CGAL::halfedges_around_target(v, m)) ring.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
+    std::vector<double> ring_density;
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      ring.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
+      if constexpr(!uniform) ring_density.push_back(vertex_density(source(h, m)));
+    }
     std::reverse(ring.begin(), ring.end());  // counter-clockwise around v
+    std::reverse(ring_density.begin(), ring_density.end());
+    double own_density = 1;
+    if constexpr(!uniform) own_density = vertex_density(v);
     const std::size_t n = ring.size();
     if(n < 3) return false;
     const Point_3& p = get(get(CGAL::vertex_point, m), v);
@@ -202,7 +244,8 @@ private:
     for(std::size_t i = 0; i < n; ++i) {
       const auto& a = q[i];
       const auto& b = q[(i + 1) % n];
-      const double w = area_weighted_ ? 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]) : 1.0;
+      double w = area_weighted_ ? 0.5 * std::abs(a[0] * b[1] - a[1] * b[0]) : 1.0;
+      if constexpr(!uniform) w *= (own_density + ring_density[i] + ring_density[(i + 1) % n]) / 3.0;
       cx += w * (a[0] + b[0]) / 3.0;
       cy += w * (a[1] + b[1]) / 3.0;
       wsum += w;
@@ -248,16 +291,23 @@ private:
   template <class Mesh, class IsFeatureEdge, class IsCorner>
   void lloyd_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Relaxation_statistics& stats) const
   {
+    lloyd_pass(m, is_feature, is_corner, stats, Unit_density());
+  }
+
+  template <class Mesh, class IsFeatureEdge, class IsCorner, class VertexDensity>
+  void lloyd_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Relaxation_statistics& stats,
+                  VertexDensity vertex_density) const
+  {
     for(auto v : vertices(m)) {
       if(is_corner(v)) continue;
       const std::size_t fd = feature_degree(v, m, is_feature);
       Point_3 target;
       if(fd == 0) {
-        if(!lloyd_target(v, m, target)) continue;
+        if(!lloyd_target(v, m, target, vertex_density)) continue;
         // the closest point of the input must be the local one: in thin parts (horns, legs, tails)
         // the other side can be closer; a projection farther than a fraction of the ring's size
         // is refused (the paper projects through a local parameterization for the same reason)
-        const Point_3 projected = project_on_surface(target);
+        const Point_3 projected = project_on_surface(target, get(get(CGAL::vertex_point, m), v));
         double ring = 0;
         std::size_t nr = 0;
         for(auto h : CGAL::halfedges_around_target(v, m)) {
@@ -273,7 +323,7 @@ private:
         std::vector<Point_3> ends;
         for(auto h : CGAL::halfedges_around_target(v, m))
           if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) ends.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
-        target = project_on_features(CGAL::midpoint(ends[0], ends[1]));
+        target = project_on_features(CGAL::midpoint(ends[0], ends[1]), get(get(CGAL::vertex_point, m), v));
       } else {
         continue;
       }

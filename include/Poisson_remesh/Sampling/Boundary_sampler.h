@@ -12,6 +12,10 @@
 // rebuilds the available boundary around the existing samples, and filling again adds samples
 // without removing any, so each level contains the coarser ones.
 //
+// Adaptive density (§5): with set_radius_field() the disk radius r(x) varies over the surface
+// (linear inside faces, Eq. 3); the available boundary of a sample p is where d(p, x) = r(p) + r(x),
+// made of conic arcs (Eq. 4-5), and the set is maximal for the rule d(p, q) >= r(p) + r(q).
+//
 // Determinism: all randomness comes from one std::mt19937_64 seeded by the caller.
 
 #ifndef POISSON_REMESH_SAMPLING_BOUNDARY_SAMPLER_H
@@ -29,6 +33,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
@@ -47,6 +52,7 @@ struct Poisson_sample
   Point_3 point;
   Sample_kind kind = Sample_kind::surface;
   unsigned int level = 0;   ///< the level of detail that added it (0: the first)
+  double radius = 0;        ///< its disk radius r (samples p, q are at least r(p) + r(q) apart)
 };
 
 /// Counters of a sampling run.
@@ -118,6 +124,7 @@ public:
   {
     if(!(r > 0)) throw std::invalid_argument("Boundary_sampler: the radius must be positive");
     if(r_ > 0 && r > r_) throw std::invalid_argument("Boundary_sampler: a new level needs a smaller radius");
+    if(!vertex_radius_.empty()) throw std::logic_error("Boundary_sampler: levels of detail need a uniform radius");
     const bool rebuild = r_ > 0;
     r_ = r;
     boundary_.clear();
@@ -128,7 +135,52 @@ public:
     samples_.clear();
     for(const Sample& s : previous) add_sample(s.location, s.kind, false, s.level);
   }
+  /// The largest disk radius (the radius, for uniform density).
   double radius() const { return r_; }
+
+  /// Adaptive density (§5): the disk radius at vertex v is `vertex_radius(v)` (> 0), interpolated
+  /// linearly inside faces (Eq. 3); samples p, q will be at least r(p) + r(q) apart (geodesic) and
+  /// every surface point x within r(p) + r(x) of a sample p. Replaces set_radius(); one level only.
+  /// The radius should not change faster than the distance (|grad r| < 1; the density fields of
+  /// the package limit it to 0.5).
+  template <class VertexRadius>
+  void set_radius_field(VertexRadius vertex_radius)
+  {
+    if(!samples_.empty()) throw std::logic_error("Boundary_sampler: set the radius field before sampling");
+    auto vim = CGAL::get_initialized_vertex_index_map(tm_);
+    vertex_radius_.assign(num_vertices(tm_), 0.0);
+    double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
+    for(vertex_descriptor v : vertices(tm_)) {
+      const double r = vertex_radius(v);
+      if(!(r > 0) || !std::isfinite(r)) throw std::invalid_argument("Boundary_sampler: radii must be positive and finite");
+      vertex_radius_[get(vim, v)] = r;
+      rmin = std::min(rmin, r);
+      rmax = std::max(rmax, r);
+    }
+    r_ = rmax;
+    boundary_.clear();
+    boundary_.set_minimum_length(1e-9 * rmin);
+    grid_.reset(2 * rmax);
+  }
+  bool adaptive() const { return !vertex_radius_.empty(); }
+
+  /// The disk radius at a surface location (r for uniform density).
+  double radius_at(const Face_location& loc) const
+  {
+    if(vertex_radius_.empty()) return r_;
+    auto vim = CGAL::get_initialized_vertex_index_map(tm_);
+    const auto h0 = halfedge(loc.first, tm_);
+    const vertex_descriptor v[3] = {source(h0, tm_), target(h0, tm_), target(next(h0, tm_), tm_)};
+    double r = 0;
+    for(int i = 0; i < 3; ++i) r += loc.second[i] * vertex_radius_[get(vim, v[i])];
+    return r;
+  }
+  /// The disk radius at vertex v.
+  double radius_at(vertex_descriptor v) const
+  {
+    if(vertex_radius_.empty()) return r_;
+    return vertex_radius_[get(CGAL::get_initialized_vertex_index_map(tm_), v)];
+  }
 
   /// Inserts a sample at `loc` whatever the available boundary says (corners, feature points).
   /// With `require_separation`, a location closer than 2r to an earlier sample is refused.
@@ -201,6 +253,7 @@ private:
 
   bool add_sample(const Face_location& unsnapped, Sample_kind kind, bool require_separation, unsigned int level)
   {
+    if(!vertex_radius_.empty()) return add_adaptive_sample(snapped(unsnapped), kind, require_separation, level);
     const Face_location loc = snapped(unsnapped);
     if(!(r_ > 0)) throw std::logic_error("Boundary_sampler: set_radius() first");
     const double two_r = 2 * r_, inside = two_r * (1 - separation_tolerance);
@@ -244,9 +297,93 @@ private:
       },
       [&](const Face_location& x) { return covered_by_earlier_samples(x, inside); });
 
-    samples_.push_back({loc, p, kind, level});
+    samples_.push_back({loc, p, kind, level, r_});
     grid_.insert(id, pc);
     return true;
+  }
+
+  // add_sample() with a radius field: the same steps with the rule d(p, q) < r(p) + r(q)
+  bool add_adaptive_sample(const Face_location& loc, Sample_kind kind, bool require_separation, unsigned int level)
+  {
+    const double rp = radius_at(loc), keep = 1 - separation_tolerance;
+    const Point_3 p = CGAL::Polygon_mesh_processing::construct_point(loc, tm_, CGAL::parameters::vertex_point_map(vpm_));
+    const std::array<double, 3> pc = coords(p);
+    // propagate far enough to see every x with d(p, x) <= rp + r(x): until the radius covers rp
+    // plus the largest radius met (with a margin for faces reaching beyond the last vertices)
+    double R = 2 * rp;
+    for(int round = 0;; ++round) {
+      oracle_.propagate(loc, R);
+      ++stats_.propagations;
+      double met = rp;
+      oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
+        met = std::max(met, radius_at(vd.first));
+      }));
+      const double needed = std::min(rp + r_, rp + 1.25 * met);
+      if(R >= needed * (1 - 1e-12) || round == 8) break;
+      R = needed;
+    }
+    if(require_separation) {
+      bool too_close = false;
+      grid_.for_each_near(pc, [&](std::size_t id) {
+        if(too_close) return;
+        const auto d = oracle_.distance(samples_[id].location);
+        too_close = d && *d < (rp + samples_[id].radius) * keep;
+      });
+      if(too_close) { ++stats_.rejected_feature_samples; return false; }
+    }
+
+    auto vertex_radius = [&](vertex_descriptor v) { return radius_at(v); };
+    const auto chains = oracle_.iso_curve(rp, vertex_radius);
+    std::vector<Arc> arcs;
+    for(const auto& curve : chains) {
+      arcs.insert(arcs.end(), curve.arcs.begin(), curve.arcs.end());
+      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+    }
+    std::vector<face_descriptor> disk_faces;
+    disk_faces.push_back(loc.first);
+    for(const Arc& a : arcs) disk_faces.push_back(a.face);
+    oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
+      if(vd.second > rp + radius_at(vd.first)) return;
+      for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
+        if(f != GT::null_face()) disk_faces.push_back(f);
+    }));
+    std::sort(disk_faces.begin(), disk_faces.end());
+    disk_faces.erase(std::unique(disk_faces.begin(), disk_faces.end()), disk_faces.end());
+
+    const std::size_t id = samples_.size();
+    boundary_.update(chains, id, disk_faces,
+      [&](const Face_location& x) {
+        const auto d = oracle_.distance(x);
+        return d && *d < (rp + radius_at(x)) * keep;
+      },
+      [&](const Face_location& x) { return covered_by_earlier_adaptive_samples(x); });
+
+    samples_.push_back({loc, p, kind, level, rp});
+    grid_.insert(id, pc);
+    return true;
+  }
+
+  bool covered_by_earlier_adaptive_samples(const Face_location& x)
+  {
+    const double rx = radius_at(x), keep = 1 - separation_tolerance;
+    const Point_3 px = CGAL::Polygon_mesh_processing::construct_point(x, tm_, CGAL::parameters::vertex_point_map(vpm_));
+    const std::array<double, 3> xc = coords(px);
+    std::vector<std::size_t> near;
+    double reach = 0;
+    grid_.for_each_near(xc, [&](std::size_t id) {
+      const std::array<double, 3> s = coords(samples_[id].point);
+      const double d2 = (s[0] - xc[0]) * (s[0] - xc[0]) + (s[1] - xc[1]) * (s[1] - xc[1]) + (s[2] - xc[2]) * (s[2] - xc[2]);
+      const double lim = (rx + samples_[id].radius) * keep;
+      if(d2 < lim * lim) { near.push_back(id); reach = std::max(reach, lim); }
+    });
+    if(near.empty()) return false;
+    classifier_.propagate(x, reach);
+    ++stats_.classification_propagations;
+    for(std::size_t id : near) {
+      const auto d = classifier_.distance(samples_[id].location);
+      if(d && *d < (rx + samples_[id].radius) * keep) return true;
+    }
+    return false;
   }
 
   // Is x closer than `inside` to an earlier sample? Only samples within Euclidean distance
@@ -287,6 +424,7 @@ private:
   std::mt19937_64 rng_;
   internal::Point_grid grid_;
   std::vector<Sample> samples_;
+  std::vector<double> vertex_radius_;   // adaptive density: radius per vertex (by vertex index)
   Sampling_statistics stats_;
   double r_ = 0;
   unsigned int level_ = 0;

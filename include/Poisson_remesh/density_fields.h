@@ -1,0 +1,306 @@
+// Poisson_remesh/density_fields.h
+//
+// Density fields for adaptive sampling and remeshing (paper §5), models of the concept
+// `DensityField` (doc/Poisson_remesh/Concepts/DensityField.h): a relative density of samples per
+// unit area given at the input's vertices, turned into a disk radius per vertex by Eq. 1 and
+// interpolated linearly inside faces (Eq. 3).
+//   - Uniform_density: the default (the uniform sampler and remesher);
+//   - Curvature_density: from principal curvatures estimated at each vertex by CGAL's
+//     Monge_via_jet_fitting (a degree-2 jet on the 2-ring; chosen over Rusinkiewicz's per-face
+//     tensors because CGAL ships it and a jet is less sensitive to skinny triangles), raised to the
+//     normal curvature across the sharpest incident edge where a thin rim escapes the jet, through
+//     a gamma curve, clamped between a minimum and a maximum edge length, Laplacian-smoothed;
+//   - Vertex_density<Map>: the user's value per vertex (a readable vertex property map);
+//   - Point_density<F>: the user's functor on 3D points, evaluated at the vertices.
+// Entry points: vertex_densities(field, tm, vpm) and vertex_disk_radii(tm, vpm, densities,
+// target_vertex_count), which scales the field so that Eq. 1 predicts the target count and limits
+// the radius gradient to 1/2 (the available boundary of §5.1 needs |grad r| < 1).
+
+#ifndef POISSON_REMESH_DENSITY_FIELDS_H
+#define POISSON_REMESH_DENSITY_FIELDS_H
+
+#include <Poisson_remesh/sizing.h>
+
+#include <CGAL/Eigen_svd.h>
+#include <CGAL/Monge_via_jet_fitting.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Kernel_traits.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+namespace Poisson_remesh {
+
+/// Uniform density: every point of the surface alike (the default).
+struct Uniform_density {};
+
+/// Curvature-adaptive density (§5.1): denser where the surface bends.
+struct Curvature_density
+{
+  /// density ~ (RMS curvature)^gamma before clamping: 0 is uniform, 1 (the default) gives edges
+  /// ~ 1 / sqrt(curvature), which evens out the distance to the input (the chord error).
+  double gamma = 1.0;
+  /// the shortest and the longest target edge (0: set by `edge_ratio` and the vertex count)
+  double min_edge = 0, max_edge = 0;
+  /// the longest over the shortest edge when min_edge and max_edge are not both given
+  double edge_ratio = 5.0;
+  /// passes of Laplacian smoothing of the density (Fig. 6)
+  unsigned int smoothing = 8;
+};
+
+/// The user's density at each vertex (relative; scaled to the target vertex count).
+template <class VertexDensityMap>
+struct Vertex_density
+{
+  VertexDensityMap map;
+};
+template <class VertexDensityMap>
+Vertex_density<VertexDensityMap> vertex_density(VertexDensityMap map) { return {map}; }
+
+/// The user's density as a function of the 3D point (relative; evaluated at the vertices).
+template <class Function>
+struct Point_density
+{
+  Function function;
+};
+template <class Function>
+Point_density<Function> point_density(Function f) { return {f}; }
+
+template <class T> struct is_uniform_density : std::is_same<typename std::decay<T>::type, Uniform_density> {};
+
+namespace internal {
+
+// per vertex: the larger of the RMS of the principal curvatures of a degree-2 jet fitted to the
+// 2-ring (CGAL::Monge_via_jet_fitting) and the largest normal curvature across an incident edge
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
+{
+  typedef typename boost::property_traits<VPM>::value_type Point_3;
+  typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
+  typedef CGAL::Monge_via_jet_fitting<K, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd> Fitting;
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  std::vector<double> kappa(num_vertices(tm), 0.0);
+  std::vector<int> stamp(num_vertices(tm), -1);
+  std::vector<Point_3> pts;
+  std::vector<vertex_descriptor> ring, outer;
+  int k = 0;
+  for(vertex_descriptor v : vertices(tm)) {
+    ++k;
+    if(halfedge(v, tm) == boost::graph_traits<TriangleMesh>::null_halfedge()) continue;
+    // the 2-ring (3-ring when the 2-ring is too small for a degree-2 jet)
+    pts.clear();
+    ring.assign(1, v);
+    stamp[get(vim, v)] = k;
+    pts.push_back(get(vpm, v));
+    for(int depth = 0; depth < 3 && (depth < 2 || pts.size() < 10); ++depth) {
+      outer.clear();
+      for(vertex_descriptor u : ring)
+        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(u, tm), tm))
+          if(stamp[get(vim, w)] != k) { stamp[get(vim, w)] = k; outer.push_back(w); pts.push_back(get(vpm, w)); }
+      ring.swap(outer);
+    }
+    if(pts.size() < 6) continue;
+    Fitting fit;
+    const auto form = fit(pts.begin(), pts.end(), 2, 2);
+    const double k1 = CGAL::to_double(form.principal_curvatures(0)), k2 = CGAL::to_double(form.principal_curvatures(1));
+    if(std::isfinite(k1) && std::isfinite(k2)) kappa[get(vim, v)] = std::sqrt(0.5 * (k1 * k1 + k2 * k2));
+  }
+  // a jet smooths over rims and creases narrower than the 2-ring (ears, fins, tails of coarse
+  // meshes), where a remesh loses most: the normal curvature across each edge (the angle between
+  // the normals of its faces over the distance between their centroids) is taken as well, and the
+  // larger of the two used
+  {
+    namespace PMP = CGAL::Polygon_mesh_processing;
+    for(auto e : edges(tm)) {
+      auto h = halfedge(e, tm);
+      if(is_border_edge(h, tm)) continue;
+      auto f1 = face(h, tm), f2 = face(opposite(h, tm), tm);
+      auto n1 = PMP::compute_face_normal(f1, tm, CGAL::parameters::vertex_point_map(vpm));
+      auto n2 = PMP::compute_face_normal(f2, tm, CGAL::parameters::vertex_point_map(vpm));
+      double ang = std::acos(std::max(-1.0, std::min(1.0, CGAL::to_double(n1 * n2))));
+      auto c1 = CGAL::centroid(get(vpm, source(h, tm)), get(vpm, target(h, tm)), get(vpm, target(next(h, tm), tm)));
+      auto h2 = opposite(h, tm);
+      auto c2 = CGAL::centroid(get(vpm, source(h2, tm)), get(vpm, target(h2, tm)), get(vpm, target(next(h2, tm), tm)));
+      double k = ang / std::sqrt(CGAL::to_double(CGAL::squared_distance(c1, c2)));
+      for(auto v : {source(h, tm), target(h, tm)}) kappa[get(vim, v)] = std::max(kappa[get(vim, v)], k);
+    }
+  }
+  return kappa;
+}
+
+template <class TriangleMesh>
+void laplacian_smooth(const TriangleMesh& tm, std::vector<double>& value, unsigned int passes)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  std::vector<double> next(value.size());
+  for(unsigned int p = 0; p < passes; ++p) {
+    for(auto v : vertices(tm)) {
+      const std::size_t i = get(vim, v);
+      double sum = 0;
+      std::size_t n = 0;
+      if(halfedge(v, tm) != boost::graph_traits<TriangleMesh>::null_halfedge())
+        for(auto w : CGAL::vertices_around_target(halfedge(v, tm), tm)) { sum += value[get(vim, w)]; ++n; }
+      next[i] = n ? 0.5 * value[i] + 0.5 * sum / double(n) : value[i];
+    }
+    value.swap(next);
+  }
+}
+
+inline double quantile(std::vector<double> v, double q)
+{
+  if(v.empty()) return 0;
+  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return v[k];
+}
+
+} // namespace internal
+
+/// The relative density at each vertex (indexed by the vertex index map) of `field` on `tm`.
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_densities(const Uniform_density&, const TriangleMesh& tm, VPM)
+{
+  return std::vector<double>(num_vertices(tm), 1.0);
+}
+
+template <class TriangleMesh, class VPM, class Map>
+std::vector<double> vertex_densities(const Vertex_density<Map>& field, const TriangleMesh& tm, VPM)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  std::vector<double> d(num_vertices(tm), 0.0);
+  for(auto v : vertices(tm)) d[get(vim, v)] = double(get(field.map, v));
+  return d;
+}
+
+template <class TriangleMesh, class VPM, class Function>
+std::vector<double> vertex_densities(const Point_density<Function>& field, const TriangleMesh& tm, VPM vpm)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  std::vector<double> d(num_vertices(tm), 0.0);
+  for(auto v : vertices(tm)) d[get(vim, v)] = double(field.function(get(vpm, v)));
+  return d;
+}
+
+/// Curvature density: (RMS curvature)^gamma, clamped so that the edge lengths it asks for span at
+/// most `edge_ratio` (the flattest 2% and the most curved 2% are clamped), Laplacian-smoothed.
+/// min_edge / max_edge, when given, are applied by vertex_disk_radii() (they are absolute).
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_densities(const Curvature_density& field, const TriangleMesh& tm, VPM vpm)
+{
+  if(!(field.gamma >= 0)) throw std::invalid_argument("Curvature_density: gamma must be >= 0");
+  if(!(field.edge_ratio >= 1)) throw std::invalid_argument("Curvature_density: edge_ratio must be >= 1");
+  std::vector<double> kappa = internal::vertex_curvatures(tm, vpm);
+  double hi = internal::quantile(kappa, 0.98);
+  if(!(hi > 0)) return std::vector<double>(kappa.size(), 1.0);   // flat: uniform
+  std::vector<double> d(kappa.size());
+  const double ratio = (field.min_edge > 0 && field.max_edge > 0) ? field.max_edge / field.min_edge : field.edge_ratio;
+  const double dmax = std::pow(hi, field.gamma), dmin = dmax / (ratio * ratio);   // density ~ 1 / edge^2
+  for(std::size_t i = 0; i < kappa.size(); ++i) d[i] = std::min(dmax, std::max(dmin, std::pow(kappa[i], field.gamma)));
+  internal::laplacian_smooth(tm, d, field.smoothing);
+  return d;
+}
+
+/*!
+  The disk radius at each vertex (by vertex index) for the relative densities `density`: Eq. 1
+  with rho = 0.844 gives r ~ 1 / sqrt(density); the field is scaled so that the integral of the
+  density Eq. 1 associates with r (linear inside faces) over the surface is `target_vertex_count`,
+  radii are clamped to [min_edge / 2, max_edge / 2] when those are given (> 0), and the gradient is
+  limited to 1/2 (a radius is lowered to its neighbour's plus half the edge between them).
+*/
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std::vector<double>& density,
+                                      double target_vertex_count, double min_edge = 0, double max_edge = 0)
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  if(!(target_vertex_count > 0)) throw std::invalid_argument("vertex_disk_radii: the target vertex count must be positive");
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  const std::size_t n = num_vertices(tm);
+  if(density.size() != n) throw std::invalid_argument("vertex_disk_radii: one density per vertex is needed");
+  for(double d : density)
+    if(!(d > 0) || !std::isfinite(d)) throw std::invalid_argument("vertex_disk_radii: densities must be positive and finite");
+  // Eq. 1: r = rho sqrt(1 / (2 sqrt(3) N)) for N points per unit area, i.e. N = rho^2 / (2 sqrt(3) r^2)
+  const double c = paper_rho * paper_rho / (2 * std::sqrt(3.0));
+  std::vector<double> base(n);
+  for(std::size_t i = 0; i < n; ++i) base[i] = std::sqrt(c / density[i]);   // radius for density 1x
+  std::vector<std::pair<vertex_descriptor, vertex_descriptor>> edge_ends;
+  std::vector<double> edge_len;
+  for(auto e : edges(tm)) {
+    const auto a = source(halfedge(e, tm), tm), b = target(halfedge(e, tm), tm);
+    edge_ends.push_back({a, b});
+    edge_len.push_back(std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b)))));
+  }
+  std::vector<double> area(num_faces(tm));
+  std::vector<std::array<std::size_t, 3>> fv;
+  for(auto f : faces(tm)) {
+    area[fv.size()] = CGAL::to_double(PMP::face_area(f, tm, CGAL::parameters::vertex_point_map(vpm)));
+    const auto h = halfedge(f, tm);
+    fv.push_back({get(vim, source(h, tm)), get(vim, target(h, tm)), get(vim, target(next(h, tm), tm))});
+  }
+  std::vector<std::vector<std::pair<std::size_t, double>>> adj(n);
+  for(std::size_t k = 0; k < edge_ends.size(); ++k) {
+    const std::size_t a = get(vim, edge_ends[k].first), b = get(vim, edge_ends[k].second);
+    adj[a].push_back({b, edge_len[k]});
+    adj[b].push_back({a, edge_len[k]});
+  }
+  std::vector<double> r(n);
+  // radii for scale s: s * base, clamped, gradient-limited (a Dijkstra-like sweep from the smallest)
+  auto radii = [&](double s) {
+    typedef std::pair<double, std::size_t> Item;
+    std::vector<Item> items(n);
+    for(std::size_t i = 0; i < n; ++i) {
+      r[i] = s * base[i];
+      if(min_edge > 0) r[i] = std::max(r[i], 0.5 * min_edge);
+      if(max_edge > 0) r[i] = std::min(r[i], 0.5 * max_edge);
+      items[i] = {r[i], i};
+    }
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q(std::greater<Item>(), std::move(items));
+    while(!q.empty()) {
+      const Item it = q.top();
+      q.pop();
+      if(it.first > r[it.second]) continue;
+      for(const auto& nb : adj[it.second])
+        if(r[nb.first] > it.first + 0.5 * nb.second) { r[nb.first] = it.first + 0.5 * nb.second; q.push({r[nb.first], nb.first}); }
+    }
+  };
+  // the count Eq. 1 predicts: the density c / r^2, linear inside faces
+  auto count = [&]() {
+    double total = 0;
+    for(std::size_t f = 0; f < fv.size(); ++f)
+      total += area[f] * (c / (r[fv[f][0]] * r[fv[f][0]]) + c / (r[fv[f][1]] * r[fv[f][1]]) + c / (r[fv[f][2]] * r[fv[f][2]])) / 3;
+    return total;
+  };
+  // count ~ 1 / s^2 where neither the clamps nor the gradient limit act: fixed-point iteration on
+  // s, then bisection if the clamps make it stall
+  double s = 1;
+  radii(s);
+  for(int it = 0; it < 12; ++it) {
+    const double ratio = count() / target_vertex_count;
+    if(std::abs(ratio - 1) < 1e-4) return r;
+    s *= std::sqrt(ratio);
+    radii(s);
+  }
+  double lo = s / 16, hi = s * 16;
+  for(int it = 0; it < 40; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    radii(mid);
+    if(count() > target_vertex_count) lo = mid; else hi = mid;
+  }
+  radii(std::sqrt(lo * hi));
+  return r;
+}
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_DENSITY_FIELDS_H
