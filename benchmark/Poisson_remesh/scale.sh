@@ -13,5 +13,5 @@ data="$build/data"
 series="$(mktemp -d)"
 trap 'rm -rf "$series"' EXIT
 meshes="$("$build/benchmark/Poisson_remesh/make_scale_series" "$data/meshes/bunny00.off" "$series" | paste -sd, -)"
-"$build/benchmark/Poisson_remesh/remesh_benchmark" --meshes "$meshes" --factor 0.86 --scale \
+"$build/benchmark/Poisson_remesh/remesh_benchmark" --meshes "$meshes" --factor 0.86 --scale --contenders cgal_isotropic,poisson_remesh \
   --markdown "$out.md" --json "$out.json"

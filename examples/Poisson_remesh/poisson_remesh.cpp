@@ -9,8 +9,10 @@
 // `--compare-peer` adds the peer's column to the table.
 #include "command_line.h"
 
+#include <Poisson_remesh/IO/write_density_map_svg.h>
 #include <Poisson_remesh/IO/write_quality_report.h>
 #include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
+#include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/read_surface_mesh.h>
@@ -21,6 +23,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -47,21 +50,19 @@ static const char* usage =
   "  --compare-peer      also run the peer and add its column to the table\n"
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
+  "  --density-svg FILE  write the sampling density on the input (samples per unit area) as an SVG picture\n"
   "  --repair            remove degenerate (zero-area) input faces instead of refusing them\n"
   "  --no-self-intersections  skip the self-intersection check of the report\n"
   "  --help              this text\n"
-  "exit codes: 0 done, 1 bad input, 2 bad usage, 3 output not written, 4 option of a stage not available yet\n";
+  "%s"
+  "exit codes: 0 done, 1 bad input, 2 bad usage, 3 output not written\n";
 
-// Options of pipeline stages that do not exist yet, with the stage that will bring them.
-static const std::map<std::string, std::string> later_options = {
-  {"--adaptive", "adaptive density"}, {"--gamma", "adaptive density"}, {"--min-edge", "adaptive density"},
-  {"--max-edge", "adaptive density"}, {"--smoothing", "adaptive density"}, {"--density", "user density fields"},
-};
 
 int main(int argc, char** argv)
 {
   std::vector<std::string> files;
-  std::string method = "poisson", report_file, svg_file;
+  std::string method = "poisson", report_file, svg_file, density_svg_file;
+  cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60;
   unsigned long seed = 0, iterations = 0;
   bool repair = false, self_intersections = true, compare_peer = false, features = true;
@@ -69,7 +70,9 @@ int main(int argc, char** argv)
     cli::Arguments args(argc, argv);
     while(!args.done()) {
       const std::string a = args.next();
-      if(a == "--help" || a == "-h") { std::cout << usage; return cli::ok; }
+      if(a == "--help" || a == "-h") { cli::print_usage(std::cout, usage); return cli::ok; }
+      else if(density.parse(a, args)) {}
+      else if(a == "--density-svg") density_svg_file = args.value(a);
       else if(a == "--vertices") vertices = double(args.whole_number(a));
       else if(a == "--edge-length") edge_length = args.number(a, 0);
       else if(a == "--method") method = args.value(a);
@@ -86,19 +89,18 @@ int main(int argc, char** argv)
         features = false;
       }
       else if(a == "--no-self-intersections") self_intersections = false;
-      else if(later_options.count(a)) {
-        std::cerr << "poisson_remesh: option " << a << " belongs to " << later_options.at(a)
-                  << ", which is not implemented yet\n";
-        return cli::not_available;
-      }
       else if(!a.empty() && a[0] == '-') throw cli::Usage_error("unknown option " + a);
       else files.push_back(a);
     }
     if(files.size() > 2) throw cli::Usage_error("too many file names (give IN and OUT)");
     if(vertices > 0 && edge_length > 0) throw cli::Usage_error("give --vertices or --edge-length, not both");
     if(method != "poisson" && method != "isotropic") throw cli::Usage_error("--method is poisson or isotropic, not " + method);
+    density.validate();
+    if(method == "isotropic" && (density.adaptive || !density.density_file.empty()))
+      throw cli::Usage_error("adaptive density is for --method poisson");
   } catch(const cli::Usage_error& e) {
-    std::cerr << "poisson_remesh: " << e.what() << "\n" << usage;
+    std::cerr << "poisson_remesh: " << e.what() << "\n";
+    cli::print_usage(std::cerr, usage);
     return cli::usage_error;
   }
 
@@ -111,13 +113,17 @@ int main(int argc, char** argv)
     return cli::usage_error;
   }
   Mesh input, output;
+  std::vector<double> user_density;
   try {
     PR::Read_report rr = PR::read_surface_mesh(in, input, PR::parameters::repair_degenerate_faces(repair));
     for(const std::string& w : rr.warnings) std::cerr << "poisson_remesh: note: " << in << ": " << w << "\n";
-  } catch(const PR::Input_error& e) {
+    user_density = cli::user_densities(density, rr, in, input);
+  } catch(const std::exception& e) {
     std::cerr << "poisson_remesh: " << e.what() << "\n";
     return cli::input_error;
   }
+  // calls f with the density field the options ask for
+  auto with_density = [&](auto f) { return cli::with_density(density, input, user_density, f); };
 
   const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(input));
   const double target = edge_length > 0 ? PR::vertex_count_from_edge_length(area, edge_length)
@@ -138,16 +144,22 @@ int main(int argc, char** argv)
   if(method == "poisson") {
     std::cout << "Poisson-disk remeshing of " << in << " (" << num_vertices(input) << " vertices) to about "
               << std::llround(target) << " vertices ... " << std::flush;
-    const PR::Poisson_remesh_result run = PR::poisson_remesh(input, output,
-      PR::parameters::target_vertex_count(std::size_t(std::llround(target)))
-        .random_seed(unsigned(seed))
-        .feature_policy(features ? PR::Feature_policy::detect : PR::Feature_policy::none)
-        .sharp_angle(sharp_angle)
-        .number_of_iterations(unsigned(iterations ? iterations : 10)));
+    const PR::Poisson_remesh_result run = with_density([&](const auto& field) {
+      return PR::poisson_remesh(input, output,
+        PR::parameters::target_vertex_count(std::size_t(std::llround(target)))
+          .random_seed(unsigned(seed))
+          .feature_policy(features ? PR::Feature_policy::detect : PR::Feature_policy::none)
+          .sharp_angle(sharp_angle)
+          .number_of_iterations(unsigned(iterations ? iterations : 10))
+          .density(field));
+    });
     std::cout << run.seconds() << " s (features " << run.seconds_features << ", sampling " << run.seconds_sampling
               << ", tessellation " << run.seconds_tessellation << ", relaxation " << run.seconds_relaxation << ")\n"
               << "  " << run.sampling.number_of_samples << " samples (" << run.sampling.number_of_corners << " corners, "
-              << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius << "\n";
+              << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius;
+    if(run.sampling.max_radius > run.sampling.min_radius)
+      std::cout << " (median; adaptive from " << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
+    std::cout << "\n";
     if(run.number_of_leftover_input_vertices)
       std::cout << "  note: " << run.number_of_leftover_input_vertices
                 << " input vertices could not be removed without changing the topology; they stay in the output\n";
@@ -170,6 +182,22 @@ int main(int argc, char** argv)
     if(!report_file.empty()) {
       PR::write_file_atomically(report_file, [&](std::ostream& os) { PR::write_quality_json(os, reports); });
       std::cout << "wrote " << report_file << "\n";
+    }
+    if(!density_svg_file.empty()) {
+      // samples per unit area (Eq. 1) at each input vertex
+      const std::vector<double> radii = with_density([&](const auto& field) {
+        return PR::vertex_disk_radii(input, input.points(), PR::vertex_densities(field, input, input.points()), target,
+                                     density.min_edge, density.max_edge);
+      });
+      const double c = PR::paper_rho * PR::paper_rho / (2 * std::sqrt(3.0));
+      PR::Density_map_view view;
+      view.title = std::filesystem::path(in).filename().string() + ": " +
+                   (density.adaptive ? "curvature-adaptive" : user_density.empty() ? "uniform" : "user") + " sampling density";
+      view.value_name = "samples / area";
+      PR::write_file_atomically(density_svg_file, [&](std::ostream& os) {
+        PR::write_density_map_svg(os, input, [&](Mesh::Vertex_index v) { return c / (radii[std::size_t(v)] * radii[std::size_t(v)]); }, view);
+      });
+      std::cout << "wrote " << density_svg_file << "\n";
     }
     if(!svg_file.empty()) {
       PR::write_file_atomically(svg_file, [&](std::ostream& os) { PR::write_angle_histogram_svg(os, reports); });

@@ -243,10 +243,30 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
   }
   std::vector<double> area(num_faces(tm));
   std::vector<std::array<std::size_t, 3>> fv;
+  // |grad r| of a face from its three radii, in the face's own 2D layout
+  struct Gradient
+  {
+    double l0 = 0, x2 = 0, y2 = 0;
+    double operator()(double r0, double r1, double r2) const
+    {
+      if(!(l0 > 0) || !(y2 > 0)) return 0;
+      const double ax = (r1 - r0) / l0, ay = (r2 - r0 - ax * x2) / y2;
+      return std::hypot(ax, ay);
+    }
+  };
+  std::vector<Gradient> face_gradient;
   for(auto f : faces(tm)) {
     area[fv.size()] = CGAL::to_double(PMP::face_area(f, tm, CGAL::parameters::vertex_point_map(vpm)));
     const auto h = halfedge(f, tm);
     fv.push_back({get(vim, source(h, tm)), get(vim, target(h, tm)), get(vim, target(next(h, tm), tm))});
+    const auto p0 = get(vpm, source(h, tm)), p1 = get(vpm, target(h, tm)), p2 = get(vpm, target(next(h, tm), tm));
+    Gradient g;
+    g.l0 = std::sqrt(CGAL::to_double(CGAL::squared_distance(p0, p1)));
+    if(g.l0 > 0) {
+      g.x2 = CGAL::to_double((p2 - p0) * (p1 - p0)) / g.l0;
+      g.y2 = 2 * area[fv.size() - 1] / g.l0;
+    }
+    face_gradient.push_back(g);
   }
   std::vector<std::vector<std::pair<std::size_t, double>>> adj(n);
   for(std::size_t k = 0; k < edge_ends.size(); ++k) {
@@ -266,12 +286,32 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
       items[i] = {r[i], i};
     }
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q(std::greater<Item>(), std::move(items));
-    while(!q.empty()) {
-      const Item it = q.top();
-      q.pop();
-      if(it.first > r[it.second]) continue;
-      for(const auto& nb : adj[it.second])
-        if(r[nb.first] > it.first + 0.5 * nb.second) { r[nb.first] = it.first + 0.5 * nb.second; q.push({r[nb.first], nb.first}); }
+    auto sweep = [&]() {
+      while(!q.empty()) {
+        const Item it = q.top();
+        q.pop();
+        if(it.first > r[it.second]) continue;
+        for(const auto& nb : adj[it.second])
+          if(r[nb.first] > it.first + 0.5 * nb.second) { r[nb.first] = it.first + 0.5 * nb.second; q.push({r[nb.first], nb.first}); }
+      }
+    };
+    sweep();
+    // the gradient inside a needle face can be far steeper than along its edges: such faces
+    // have their radii pulled towards their smallest one (radii only decrease, so this ends)
+    for(int pass = 0; pass < 20; ++pass) {
+      bool changed = false;
+      for(std::size_t f = 0; f < fv.size(); ++f) {
+        const double g = face_gradient[f](r[fv[f][0]], r[fv[f][1]], r[fv[f][2]]);
+        if(!(g > 0.5 + 1e-12)) continue;
+        const double lo_r = std::min({r[fv[f][0]], r[fv[f][1]], r[fv[f][2]]});
+        for(std::size_t k : fv[f]) {
+          r[k] = lo_r + (r[k] - lo_r) * (0.5 / g);
+          q.push({r[k], k});
+        }
+        changed = true;
+      }
+      if(!changed) break;
+      sweep();
     }
   };
   // the count Eq. 1 predicts: the density c / r^2, linear inside faces

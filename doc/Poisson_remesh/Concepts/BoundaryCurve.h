@@ -13,8 +13,12 @@ covers -- the boundary of the union of the disks. Each piece is an arc inside on
 input mesh, in that face's 2D frame (see `GeodesicOracle`). New samples are drawn on it, and each
 new sample's curve updates it, until it is empty: then the samples form a maximal Poisson-disk set.
 
-\cgalHasModel `Poisson_remesh::Circular_available_boundary<TriangleMesh, Arc>` (uniform density;
-its arcs are the circular `Iso_arc`s of `Exact_geodesic_oracle`)
+With adaptive density (§5.1) the curve of a sample p is where d(p, x) = r(p) + r(x) and the
+region is {x : d(p, x) < r(p) + r(x)}; its pieces are conic arcs.
+
+\cgalHasModel `Poisson_remesh::Circular_available_boundary<TriangleMesh, Arc>` (uniform density:
+the circular `Iso_arc`s of `Exact_geodesic_oracle`; adaptive density: its conic `Iso_arc`s, those
+with a non-zero `gradient`, whose crossings it finds numerically)
 */
 class BoundaryCurve
 {

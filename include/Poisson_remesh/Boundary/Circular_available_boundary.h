@@ -239,6 +239,14 @@ public:
   template <class Uniform01>
   Face_location pick(Uniform01&& u01)
   {
+    std::size_t arc;
+    return pick(u01, arc);
+  }
+
+  /// The same, telling which arc the point is on (for remove_arc()).
+  template <class Uniform01>
+  Face_location pick(Uniform01&& u01, std::size_t& arc)
+  {
     for(int attempt = 0;; ++attempt) {
       const double total = fenwick_.total();
       double rest = 0;
@@ -246,11 +254,12 @@ public:
       if(i < arcs_.size() && alive_[i]) {
         const double len = fenwick_.weight(i);
         const double t = len > 0 ? std::min(1.0, std::max(0.0, rest / len)) : 0.5;
+        arc = i;
         return location(arcs_[i].arc, t);
       }
       fenwick_.rebuild(); // rounding drift: rebuild and draw again
       if(attempt > 3) {   // fall back to the first live arc
-        for(std::size_t k = 0; k < arcs_.size(); ++k) if(alive_[k]) return location(arcs_[k].arc, u01());
+        for(std::size_t k = 0; k < arcs_.size(); ++k) if(alive_[k]) { arc = k; return location(arcs_[k].arc, u01()); }
       }
     }
   }
@@ -318,6 +327,10 @@ public:
     return {a.face, b};
   }
 
+
+  /// Drops a live arc (the sampler's safety net: an arc found inside the region of an earlier
+  /// sample, which rounding in the conic case can leave behind).
+  void remove_arc(std::size_t i) { if(i < arcs_.size() && alive_[i]) kill(i); }
 
   /// decisions taken by crossing directions / by in_old_disks (for statistics)
   std::size_t runs_decided_by_crossings() const { return by_crossings_; }

@@ -160,6 +160,7 @@ struct Iso_arc
     // |d/dtheta (rho u)| = sqrt(rho^2 + rho'^2), integrated by 4-point Gauss-Legendre on pieces
     // of at most pi/8 (relative error < 1e-9 for eccentricities up to 0.9)
     const double span = theta_end - theta_start;
+    if(!(span > 0.)) return 0.;
     const int pieces = 1 + int(span / (3.14159265358979323846 / 8.));
     const double h = span / pieces;
     static const double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};

@@ -62,6 +62,7 @@ struct Sampling_statistics
   std::size_t classification_propagations = 0; ///< propagations from boundary midpoints (§4.2.3 decisions)
   std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
   std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border
+  std::size_t dropped_arcs = 0;            ///< adaptive density: boundary arcs found inside an earlier sample's region
 };
 
 namespace internal {
@@ -222,7 +223,16 @@ public:
   void fill()
   {
     while(!boundary_.empty()) {
-      const Face_location loc = boundary_.pick([this] { return uniform01(); });
+      std::size_t arc = 0;
+      const Face_location loc = boundary_.pick([this] { return uniform01(); }, arc);
+      // adaptive density: a point already inside an earlier sample's region (d < r(p) + r(x))
+      // means its arc was left behind by an update (a conic arc where the radius changes faster
+      // than the distance on a needle face): the arc is dropped, and counted
+      if(!vertex_radius_.empty() && covered_by_earlier_adaptive_samples(snapped(loc))) {
+        boundary_.remove_arc(arc);
+        ++stats_.dropped_arcs;
+        continue;
+      }
       add_sample(loc, Sample_kind::surface, false, level_);
     }
   }
@@ -315,8 +325,10 @@ private:
       oracle_.propagate(loc, R);
       ++stats_.propagations;
       double met = rp;
+      // (the vertices around the reached ones too: their faces reach beyond the last vertices)
       oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
         met = std::max(met, radius_at(vd.first));
+        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(vd.first, tm_), tm_)) met = std::max(met, radius_at(w));
       }));
       const double needed = std::min(rp + r_, rp + 1.25 * met);
       if(R >= needed * (1 - 1e-12) || round == 8) break;

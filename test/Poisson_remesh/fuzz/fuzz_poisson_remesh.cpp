@@ -3,7 +3,7 @@
 // patch, a cylinder or a sphere-like cap, with heights and jitter read from the input, random
 // diagonal flips and possibly collapsed (degenerate) cells; then the reader's validation
 // (as a file, so that degenerate input goes the user's way) and poisson_remesh() at a small
-// vertex count. Refused input is fine; an accepted one must give a valid mesh with the input's
+// vertex count, with uniform or (one in three) curvature-adaptive density. Refused input is fine; an accepted one must give a valid mesh with the input's
 // Euler characteristic and every vertex on the input, and nothing may crash or hang.
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/read_surface_mesh.h>
@@ -78,7 +78,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::remove(path.c_str());
   const std::size_t target = 20 + b.next() % 80;
-  PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(b.next()).number_of_iterations(3u));
+  // one input in three with adaptive density (the conic available boundary of §5.1)
+  const unsigned seed = b.next();
+  if(b.next() % 3 == 0) {
+    PR::Curvature_density density;
+    density.smoothing = b.next() % 4;
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(seed).number_of_iterations(3u).density(density));
+  } else {
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(seed).number_of_iterations(3u));
+  }
   if(!CGAL::is_valid_polygon_mesh(out) || !CGAL::is_triangle_mesh(out)) std::abort();
   long used = 0;   // vertices of the surface (a grid point under a hole is left isolated)
   for(auto v : vertices(in)) if(halfedge(v, in) != Mesh::null_halfedge()) ++used;
