@@ -160,6 +160,10 @@ int main(int argc, char** argv)
     if(run.sampling.max_radius > run.sampling.min_radius)
       std::cout << " (median; adaptive from " << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
     std::cout << "\n";
+    if(run.sampling.statistics.open_iso_curves || run.sampling.statistics.dropped_arcs)
+      std::cout << "  note: " << run.sampling.statistics.open_iso_curves << " iso-curves did not close, "
+                << run.sampling.statistics.dropped_arcs << " boundary arcs left inside a disk were dropped ("
+                << run.sampling.statistics.propagations << " propagations)\n";
     if(run.number_of_leftover_input_vertices)
       std::cout << "  note: " << run.number_of_leftover_input_vertices
                 << " input vertices could not be removed without changing the topology; they stay in the output\n";

@@ -80,6 +80,18 @@ template <class T> struct is_uniform_density : std::is_same<typename std::decay<
 
 namespace internal {
 
+// One past the largest vertex index: per-vertex vectors are indexed by the vertex index map,
+// whose values are not contiguous when the mesh holds removed elements (a Surface_mesh after
+// remove_degenerate_faces(), before collect_garbage(): found by fuzzing).
+template <class TriangleMesh>
+std::size_t vertex_index_bound(const TriangleMesh& tm)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  std::size_t n = 0;
+  for(auto v : vertices(tm)) n = (std::max)(n, std::size_t(get(vim, v)) + 1);
+  return n;
+}
+
 // per vertex: the larger of the RMS of the principal curvatures of a degree-2 jet fitted to the
 // 2-ring (CGAL::Monge_via_jet_fitting) and the largest normal curvature across an incident edge
 template <class TriangleMesh, class VPM>
@@ -90,8 +102,8 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
   typedef CGAL::Monge_via_jet_fitting<K, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd> Fitting;
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
-  std::vector<double> kappa(num_vertices(tm), 0.0);
-  std::vector<int> stamp(num_vertices(tm), -1);
+  std::vector<double> kappa(vertex_index_bound(tm), 0.0);
+  std::vector<int> stamp(kappa.size(), -1);
   std::vector<Point_3> pts;
   std::vector<vertex_descriptor> ring, outer;
   int k = 0;
@@ -132,7 +144,8 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
       auto c1 = CGAL::centroid(get(vpm, source(h, tm)), get(vpm, target(h, tm)), get(vpm, target(next(h, tm), tm)));
       auto h2 = opposite(h, tm);
       auto c2 = CGAL::centroid(get(vpm, source(h2, tm)), get(vpm, target(h2, tm)), get(vpm, target(next(h2, tm), tm)));
-      double k = ang / std::sqrt(CGAL::to_double(CGAL::squared_distance(c1, c2)));
+      const double k = ang / std::sqrt(CGAL::to_double(CGAL::squared_distance(c1, c2)));
+      if(!std::isfinite(k)) continue;   // degenerate faces: no normal, or coincident centroids
       for(auto v : {source(h, tm), target(h, tm)}) kappa[get(vim, v)] = std::max(kappa[get(vim, v)], k);
     }
   }
@@ -171,14 +184,14 @@ inline double quantile(std::vector<double> v, double q)
 template <class TriangleMesh, class VPM>
 std::vector<double> vertex_densities(const Uniform_density&, const TriangleMesh& tm, VPM)
 {
-  return std::vector<double>(num_vertices(tm), 1.0);
+  return std::vector<double>(internal::vertex_index_bound(tm), 1.0);
 }
 
 template <class TriangleMesh, class VPM, class Map>
 std::vector<double> vertex_densities(const Vertex_density<Map>& field, const TriangleMesh& tm, VPM)
 {
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
-  std::vector<double> d(num_vertices(tm), 0.0);
+  std::vector<double> d(internal::vertex_index_bound(tm), 1.0);
   for(auto v : vertices(tm)) d[get(vim, v)] = double(get(field.map, v));
   return d;
 }
@@ -187,7 +200,7 @@ template <class TriangleMesh, class VPM, class Function>
 std::vector<double> vertex_densities(const Point_density<Function>& field, const TriangleMesh& tm, VPM vpm)
 {
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
-  std::vector<double> d(num_vertices(tm), 0.0);
+  std::vector<double> d(internal::vertex_index_bound(tm), 1.0);
   for(auto v : vertices(tm)) d[get(vim, v)] = double(field.function(get(vpm, v)));
   return d;
 }
@@ -201,8 +214,9 @@ std::vector<double> vertex_densities(const Curvature_density& field, const Trian
   if(!(field.gamma >= 0)) throw std::invalid_argument("Curvature_density: gamma must be >= 0");
   if(!(field.edge_ratio >= 1)) throw std::invalid_argument("Curvature_density: edge_ratio must be >= 1");
   std::vector<double> kappa = internal::vertex_curvatures(tm, vpm);
+  for(double& k : kappa) if(!std::isfinite(k)) k = 0;
   double hi = internal::quantile(kappa, 0.98);
-  if(!(hi > 0)) return std::vector<double>(kappa.size(), 1.0);   // flat: uniform
+  if(!(hi > 0) || !std::isfinite(std::pow(hi, field.gamma))) return std::vector<double>(kappa.size(), 1.0);   // flat: uniform
   std::vector<double> d(kappa.size());
   const double ratio = (field.min_edge > 0 && field.max_edge > 0) ? field.max_edge / field.min_edge : field.edge_ratio;
   const double dmax = std::pow(hi, field.gamma), dmin = dmax / (ratio * ratio);   // density ~ 1 / edge^2
@@ -226,14 +240,16 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
   namespace PMP = CGAL::Polygon_mesh_processing;
   if(!(target_vertex_count > 0)) throw std::invalid_argument("vertex_disk_radii: the target vertex count must be positive");
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
-  const std::size_t n = num_vertices(tm);
-  if(density.size() != n) throw std::invalid_argument("vertex_disk_radii: one density per vertex is needed");
-  for(double d : density)
+  const std::size_t n = internal::vertex_index_bound(tm);
+  if(density.size() < n) throw std::invalid_argument("vertex_disk_radii: one density per vertex is needed");
+  for(auto v : vertices(tm)) {
+    const double d = density[get(vim, v)];
     if(!(d > 0) || !std::isfinite(d)) throw std::invalid_argument("vertex_disk_radii: densities must be positive and finite");
+  }
   // Eq. 1: r = rho sqrt(1 / (2 sqrt(3) N)) for N points per unit area, i.e. N = rho^2 / (2 sqrt(3) r^2)
   const double c = paper_rho * paper_rho / (2 * std::sqrt(3.0));
   std::vector<double> base(n);
-  for(std::size_t i = 0; i < n; ++i) base[i] = std::sqrt(c / density[i]);   // radius for density 1x
+  for(std::size_t i = 0; i < n; ++i) base[i] = density[i] > 0 ? std::sqrt(c / density[i]) : 1.0;   // radius for density 1x
   std::vector<std::pair<vertex_descriptor, vertex_descriptor>> edge_ends;
   std::vector<double> edge_len;
   for(auto e : edges(tm)) {
@@ -323,11 +339,20 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
   };
   // count ~ 1 / s^2 where neither the clamps nor the gradient limit act: fixed-point iteration on
   // s, then bisection if the clamps make it stall
+  // indices no vertex uses (removed elements) get a radius of a vertex, so that statistics over
+  // the vector stay meaningful
+  auto fill_unused = [&](std::vector<double>& radius) {
+    std::vector<char> used(n, 0);
+    for(auto v : vertices(tm)) used[get(vim, v)] = 1;
+    double any = 0;
+    for(std::size_t i = 0; i < n; ++i) if(used[i]) { any = radius[i]; break; }
+    for(std::size_t i = 0; i < n; ++i) if(!used[i]) radius[i] = any;
+  };
   double s = 1;
   radii(s);
   for(int it = 0; it < 12; ++it) {
     const double ratio = count() / target_vertex_count;
-    if(std::abs(ratio - 1) < 1e-4) return r;
+    if(std::abs(ratio - 1) < 1e-4) { fill_unused(r); return r; }
     s *= std::sqrt(ratio);
     radii(s);
   }
@@ -338,6 +363,7 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
     if(count() > target_vertex_count) lo = mid; else hi = mid;
   }
   radii(std::sqrt(lo * hi));
+  fill_unused(r);
   return r;
 }
 

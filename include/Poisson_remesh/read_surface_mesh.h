@@ -17,6 +17,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -94,6 +95,7 @@ struct Read_report
   std::size_t removed_isolated_points = 0;  ///< points used by no face (dropped)
   std::size_t merged_duplicate_points = 0;  ///< points at the same position as another one, merged into it
   std::size_t unmerged_duplicate_points = 0; ///< duplicates left apart: merging them would break manifoldness
+  std::size_t split_pinched_vertices = 0;    ///< with repair_degenerate_faces(true): vertices split after the removal
   std::vector<std::string> warnings;      ///< one sentence each
 };
 
@@ -408,6 +410,13 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
     }
     report.removed_degenerate_faces = degenerate;
     report.warnings.push_back(std::to_string(degenerate) + " degenerate faces were removed");
+    // a removed face can leave a vertex where two fans touch (found by fuzzing): it is split
+    // into one vertex per fan, which keeps every face and makes the surface a manifold again
+    const std::size_t pinched = PMP::duplicate_non_manifold_vertices(tm, CGAL::parameters::vertex_point_map(vpm));
+    if(pinched) {
+      report.split_pinched_vertices = pinched;
+      report.warnings.push_back(std::to_string(pinched) + " vertices where the removed faces left two fans touching were split");
+    }
   }
   return report;
 }

@@ -17,6 +17,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -438,6 +440,15 @@ TEST_CASE("reading accepts imperfect but valid input and says what it did", "[re
                                                     PR::parameters::repair_degenerate_faces(true));
     CHECK(rr.removed_degenerate_faces == 1);
     CHECK(PR::quality_report(r).number_of_degenerate_faces == 0);
+  }
+  SECTION("a removed degenerate face leaves no pinched vertex (found by fuzzing)") {
+    // triangles A and B joined only through the zero-area face (0, 2, 3)
+    const std::string pinch = "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n-1 -0.5 0\n3 0 1 2\n3 0 2 3\n3 0 3 4\n";
+    Mesh r;
+    PR::read_surface_mesh(write_text(dir / "pinch.off", pinch), r, PR::parameters::repair_degenerate_faces(true));
+    CHECK(CGAL::is_valid_polygon_mesh(r));
+    CHECK(PR::quality_report(r).number_of_degenerate_faces == 0);
+    for(auto v : vertices(r)) CHECK(!PMP::is_non_manifold_vertex(v, r));
   }
 }
 

@@ -318,6 +318,31 @@ TEST_CASE("a mesh whose triangles each have their own corners is merged and reme
     CHECK(b.mean_min_angle > 52);
     CHECK(b.number_of_self_intersecting_face_pairs == 0);
   }
+  SECTION("a torus with every other face turned over: reoriented, then remeshed") {
+    const analytic::Soup s = analytic::torus(48, 16);
+    std::ostringstream off;
+    off.precision(17);
+    off << "OFF\n" << s.points.size() << " " << s.triangles.size() << " 0\n";
+    for(const auto& p : s.points) off << p[0] << " " << p[1] << " " << p[2] << "\n";
+    for(std::size_t f = 0; f < s.triangles.size(); ++f) {
+      const auto& t = s.triangles[f];
+      if(f % 2) off << "3 " << t[0] << " " << t[2] << " " << t[1] << "\n";
+      else off << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    }
+    Mesh in;
+    const PR::Read_report rr = PR::read_surface_mesh(test_support::write_text(dir / "flipped.off", off.str()), in);
+    CHECK(rr.reoriented);
+    REQUIRE(CGAL::is_closed(in));
+    Mesh out;
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(900).random_seed(1u));
+    const PR::Quality_report b = PR::quality_report(out, in);
+    CHECK(b.number_of_components == 1);
+    CHECK(b.euler_characteristic == 0);
+    CHECK(CGAL::is_closed(out));
+    CHECK(b.min_angle >= 30);
+    CHECK(b.mean_min_angle > 52);
+    CHECK(b.number_of_self_intersecting_face_pairs == 0);
+  }
   SECTION("duplicates whose merge would pinch the surface are kept apart") {
     // two tetrahedra touching at the origin, each with its own copy of that point
     const std::string two = "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n-1 0 0\n0 -1 0\n0 0 -1\n"

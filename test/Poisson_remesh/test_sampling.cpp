@@ -9,6 +9,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
 
@@ -460,6 +461,37 @@ std::pair<double, double> check_adaptive_rule(const Mesh& m, const std::vector<S
   return {smallest, largest};
 }
 
+// Surface_mesh_shortest_path spot checks of the adaptive rule: n samples against their
+// neighbours, n random points against the samples near them
+void check_adaptive_with_shortest_path_judge(const Mesh& m, const std::vector<Sample>& s, const std::vector<double>& vr, std::size_t n)
+{
+  std::mt19937 g(13);
+  for(std::size_t k = 0; k < n; ++k) {
+    const Sample& a = s[g() % s.size()];
+    SMSP smsp(m);
+    smsp.add_source_point(a.location.first, judge_coordinates(a.location.second));
+    smsp.build_sequence_tree();
+    for(const Sample& b : s) {
+      const double lim = a.radius + b.radius;
+      if(&a == &b || CGAL::squared_distance(a.point, b.point) >= lim * lim) continue;
+      if(a.kind == PR::Sample_kind::corner && b.kind == PR::Sample_kind::corner) continue;
+      CHECK(smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first >= lim * (1 - 1e-6));
+    }
+  }
+  for(const auto& q : random_locations(m, n, 17)) {
+    SMSP smsp(m);
+    smsp.add_source_point(q.first, judge_coordinates(q.second));
+    smsp.build_sequence_tree();
+    const Point p = PMP::construct_point(q, m);
+    const double rx = radius_at(m, vr, q);
+    double nearest = HUGE_VAL;
+    for(const Sample& b : s)
+      if(CGAL::squared_distance(p, b.point) <= CGAL::square(rx + b.radius))
+        nearest = std::min(nearest, smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first / (rx + b.radius));
+    CHECK(nearest <= 1 + 1e-6);
+  }
+}
+
 template <class Field>
 std::vector<Sample> adaptive_sample(const Mesh& m, const Field& field, double n, unsigned seed, std::vector<double>& vertex_radius,
                                     PR::Poisson_disk_sampling_result* result = nullptr)
@@ -492,6 +524,8 @@ TEST_CASE("adaptive samples keep d(p, q) >= r(p) + r(q) and cover the surface by
     for(const Sample& x : s) if(x.point.x() > 0.5) ++right;
     CHECK(double(right) > 1.6 * double(s.size() - right));
     CHECK(r.statistics.open_iso_curves == 0);
+    CHECK(r.statistics.dropped_arcs == 0);
+    check_adaptive_with_shortest_path_judge(m, s, vr, 10);
   }
   SECTION("an open cylinder with a ramp along its axis (judge: the unrolled strip)") {
     const std::size_t n = 40;
@@ -512,6 +546,7 @@ TEST_CASE("adaptive samples keep d(p, q) >= r(p) + r(q) and cover the surface by
       ds = std::min(ds, perimeter - ds);
       return std::hypot(ds, p.z() - b.point.z());
     });
+    check_adaptive_with_shortest_path_judge(m, s, vr, 10);
   }
   SECTION("elephant with the curvature density (judges: the exact oracle, Surface_mesh_shortest_path spot checks)") {
     Mesh m;
@@ -530,34 +565,22 @@ TEST_CASE("adaptive samples keep d(p, q) >= r(p) + r(q) and cover the surface by
       const auto d = o.distance(b.location);
       return d ? *d : HUGE_VAL;
     });
-    // Surface_mesh_shortest_path spot checks: 15 samples against their neighbours
-    std::mt19937 g(13);
-    for(int k = 0; k < 15; ++k) {
-      const Sample& a = s[g() % s.size()];
-      SMSP smsp(m);
-      smsp.add_source_point(a.location.first, judge_coordinates(a.location.second));
-      smsp.build_sequence_tree();
-      for(const Sample& b : s) {
-        const double lim = a.radius + b.radius;
-        if(&a == &b || CGAL::squared_distance(a.point, b.point) >= lim * lim) continue;
-        if(a.kind == PR::Sample_kind::corner && b.kind == PR::Sample_kind::corner) continue;
-        CHECK(smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first >= lim * (1 - 1e-6));
-      }
-    }
-    // and 15 random points: some sample p within r(x) + r(p)
-    for(const auto& q : random_locations(m, 15, 17)) {
-      SMSP smsp(m);
-      smsp.add_source_point(q.first, judge_coordinates(q.second));
-      smsp.build_sequence_tree();
-      const Point p = PMP::construct_point(q, m);
-      const double rx = radius_at(m, vr, q);
-      double nearest = HUGE_VAL;
-      for(const Sample& b : s)
-        if(CGAL::squared_distance(p, b.point) <= CGAL::square(rx + b.radius))
-          nearest = std::min(nearest, smsp.shortest_distance_to_source_points(b.location.first, judge_coordinates(b.location.second)).first / (rx + b.radius));
-      CHECK(nearest <= 1 + 1e-6);
-    }
+    check_adaptive_with_shortest_path_judge(m, s, vr, 15);
   }
+}
+
+TEST_CASE("the curvature density stays finite on degenerate faces (found by fuzzing)", "[sampling][adaptive]")
+{
+  // a strip with a zero-area face: no normal, coincident centroids; it gave infinite curvatures
+  std::vector<Point> pts = {Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, 0), Point(0, 1, 0), Point(1, 1, 0.3), Point(2, 1, 0)};
+  std::vector<std::vector<std::size_t>> tris = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {0, 2, 1}};
+  Mesh m;
+  PMP::polygon_soup_to_polygon_mesh(pts, tris, m);
+  REQUIRE(num_faces(m) == 5);
+  const std::vector<double> d = PR::vertex_densities(PR::Curvature_density(), m, m.points());
+  for(double x : d) { CHECK(std::isfinite(x)); CHECK(x > 0); }
+  const std::vector<double> r = PR::vertex_disk_radii(m, m.points(), d, 20);
+  for(double x : r) { CHECK(std::isfinite(x)); CHECK(x > 0); }
 }
 
 TEST_CASE("the same seed gives the same samples, another seed others", "[sampling]")

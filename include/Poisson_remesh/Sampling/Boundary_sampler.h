@@ -23,6 +23,7 @@
 
 #include <Poisson_remesh/Boundary/Circular_available_boundary.h>
 #include <Poisson_remesh/Geodesic/Exact_geodesic_oracle.h>
+#include <Poisson_remesh/density_fields.h>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
@@ -149,7 +150,7 @@ public:
   {
     if(!samples_.empty()) throw std::logic_error("Boundary_sampler: set the radius field before sampling");
     auto vim = CGAL::get_initialized_vertex_index_map(tm_);
-    vertex_radius_.assign(num_vertices(tm_), 0.0);
+    vertex_radius_.assign(internal::vertex_index_bound(tm_), 0.0);
     double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
     for(vertex_descriptor v : vertices(tm_)) {
       const double r = vertex_radius(v);

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -76,11 +77,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::remove(path.c_str());
     return 0;
   }
+  if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE")) std::ofstream("/tmp/poisson_remesh_fuzz_input.off") << std::setprecision(17) << in;
   std::remove(path.c_str());
   const std::size_t target = 20 + b.next() % 80;
   // one input in three with adaptive density (the conic available boundary of §5.1)
   const unsigned seed = b.next();
-  if(b.next() % 3 == 0) {
+  const bool adaptive = b.next() % 3 == 0;
+  if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE")) std::fprintf(stderr, "%s density, target %zu\n", adaptive ? "adaptive" : "uniform", target);
+  if(adaptive) {
     PR::Curvature_density density;
     density.smoothing = b.next() % 4;
     PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(seed).number_of_iterations(3u).density(density));
@@ -92,6 +96,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for(auto v : vertices(in)) if(halfedge(v, in) != Mesh::null_halfedge()) ++used;
   const long chi_in = used - long(edges(in).size()) + long(faces(in).size());
   const long chi_out = long(vertices(out).size()) - long(edges(out).size()) + long(faces(out).size());
+  if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE"))
+    std::fprintf(stderr, "input V %zu F %zu chi %ld, output V %zu F %zu chi %ld\n", std::size_t(used), std::size_t(faces(in).size()),
+                 chi_in, std::size_t(vertices(out).size()), std::size_t(faces(out).size()), chi_out);
   if(chi_in != chi_out) std::abort();
   return 0;
 }
