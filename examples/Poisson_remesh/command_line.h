@@ -18,7 +18,7 @@
 namespace cli {
 
 /// Exit codes of every program of the package.
-enum Exit_code { ok = 0, input_error = 1, usage_error = 2, output_error = 3, not_available = 4, internal_error = 5 };
+enum Exit_code { ok = 0, input_error = 1, usage_error = 2, output_error = 3, internal_error = 5 };
 
 struct Usage_error : std::runtime_error { using std::runtime_error::runtime_error; };
 

@@ -116,7 +116,8 @@ public:
   static constexpr double separation_tolerance = 1e-9;
 
   Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed)
-    : tm_(tm), vpm_(vpm), oracle_(tm, vpm), classifier_(tm, vpm), boundary_(tm), rng_(seed)
+    : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), oracle_(tm, vpm), classifier_(tm, vpm),
+      boundary_(tm), rng_(seed)
   {}
 
   /// The expellant-disk radius r (samples are at least 2r apart). A smaller radius than the
@@ -149,13 +150,12 @@ public:
   void set_radius_field(VertexRadius vertex_radius)
   {
     if(!samples_.empty()) throw std::logic_error("Boundary_sampler: set the radius field before sampling");
-    auto vim = CGAL::get_initialized_vertex_index_map(tm_);
     vertex_radius_.assign(internal::vertex_index_bound(tm_), 0.0);
     double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
     for(vertex_descriptor v : vertices(tm_)) {
       const double r = vertex_radius(v);
       if(!(r > 0) || !std::isfinite(r)) throw std::invalid_argument("Boundary_sampler: radii must be positive and finite");
-      vertex_radius_[get(vim, v)] = r;
+      vertex_radius_[get(vim_, v)] = r;
       rmin = std::min(rmin, r);
       rmax = std::max(rmax, r);
     }
@@ -170,18 +170,17 @@ public:
   double radius_at(const Face_location& loc) const
   {
     if(vertex_radius_.empty()) return r_;
-    auto vim = CGAL::get_initialized_vertex_index_map(tm_);
     const auto h0 = halfedge(loc.first, tm_);
     const vertex_descriptor v[3] = {source(h0, tm_), target(h0, tm_), target(next(h0, tm_), tm_)};
     double r = 0;
-    for(int i = 0; i < 3; ++i) r += loc.second[i] * vertex_radius_[get(vim, v[i])];
+    for(int i = 0; i < 3; ++i) r += loc.second[i] * vertex_radius_[get(vim_, v[i])];
     return r;
   }
   /// The disk radius at vertex v.
   double radius_at(vertex_descriptor v) const
   {
     if(vertex_radius_.empty()) return r_;
-    return vertex_radius_[get(CGAL::get_initialized_vertex_index_map(tm_), v)];
+    return vertex_radius_[get(vim_, v)];
   }
 
   /// Inserts a sample at `loc` whatever the available boundary says (corners, feature points).
@@ -432,6 +431,8 @@ private:
 
   const TriangleMesh& tm_;
   VertexPointMap vpm_;
+  // the index map is fetched once: radius_at() runs for every reached vertex and boundary test
+  typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type vim_;
   GeodesicOracle oracle_, classifier_;
   Boundary boundary_;
   std::mt19937_64 rng_;
