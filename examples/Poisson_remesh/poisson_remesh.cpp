@@ -167,6 +167,9 @@ int main(int argc, char** argv)
     if(run.number_of_leftover_input_vertices)
       std::cout << "  note: " << run.number_of_leftover_input_vertices
                 << " input vertices could not be removed without changing the topology; they stay in the output\n";
+    if(run.number_of_merged_samples)
+      std::cout << "  note: " << run.number_of_merged_samples
+                << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
     reports.push_back({"output (Poisson)", PR::quality_report(output, input, np)});
     if(compare_peer) {
       Mesh peer;

@@ -29,6 +29,7 @@ struct Poisson_remesh_result
 {
   Poisson_disk_sampling_result sampling;
   std::size_t number_of_leftover_input_vertices = 0;  ///< input vertices the tessellation could not remove
+  std::size_t number_of_merged_samples = 0;  ///< samples on the vertex of another (nearly zero-area input faces)
   Relaxation_statistics relaxation;
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
   double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
@@ -80,6 +81,7 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   clear(output);
   const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
   result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
+  result.number_of_merged_samples = tessellation.merged_samples.size();
   result.seconds_tessellation = since(t);
 
   t = now();
@@ -100,7 +102,20 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
     if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
     const Point_3 mid = CGAL::midpoint(point(a), point(b));
     const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
-    return d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b)));
+    if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
+    // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
+    // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
+    // curve), the edge may be flipped away
+    for(auto h : {halfedge(e, output), opposite(halfedge(e, output), output)}) {
+      if(is_border(h, output)) continue;
+      const vertex_descriptor c = target(next(h, output), output);
+      const int kc = kind(c);
+      if(kc != int(Sample_kind::corner) && kc != int(Sample_kind::feature)) continue;
+      const auto u = point(a) - point(c), w = point(b) - point(c);
+      const double uw = CGAL::to_double(u * w);
+      if(uw < 0 && uw * uw > 0.75 * CGAL::to_double(u.squared_length()) * CGAL::to_double(w.squared_length())) return false;   // angle at c > 150 degrees
+    }
+    return true;
   };
   auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
   auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };

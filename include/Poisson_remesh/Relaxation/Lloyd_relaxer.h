@@ -30,6 +30,7 @@
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -63,6 +64,13 @@ struct Relaxation_settings
   double sliver_angle = 30;
   double sliver_edge_ratio = 0.45;
   unsigned int rounds_after_collapse = 3;
+  /// the collapses may also merge two corners joined by a sliver's short feature edge
+  bool merge_close_corners = true;
+  /// (beyond the paper) rounds of local angle optimization at the end: each movable vertex of a
+  /// triangle sharper than `sliver_angle` moves (on the input; a feature vertex along its curve)
+  /// to raise the smallest angle of its triangles, by a pattern search; 0 disables. Lloyd's
+  /// centroids leave slivers beside vertices that may not move (corners, tips, feature samples)
+  unsigned int angle_rounds = 4;
   /// (beyond the paper) a feature or border edge longer than this times the mean length of the
   /// other edges at its ends (a feature sample was refused there, too close to another curve's)
   /// is split at its midpoint projected onto the input's features, unless the curve bends away
@@ -74,6 +82,7 @@ struct Relaxation_settings
 struct Relaxation_statistics
 {
   std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
+  std::size_t angle_moves = 0;   ///< moves of the final angle optimization
 };
 
 template <class InputMesh, class GeomTraits>
@@ -162,6 +171,12 @@ public:
     // end on geometry: a last Lloyd pass and Delaunay flips
     lloyd_pass(mesh, is_feature, is_corner, stats);
     if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
+    // then the vertices of the triangles still sharper than sliver_angle (next to vertices that
+    // may not move) raise the smallest angle around them
+    for(unsigned int it = 0; it < s.angle_rounds; ++it) {
+      if(angle_pass(mesh, is_feature, is_corner, s, stats) == 0) break;
+      if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
+    }
     return stats;
   }
 
@@ -344,7 +359,8 @@ private:
     const Point_3 &P = get(get(CGAL::vertex_point, m), p), &Q = get(get(CGAL::vertex_point, m), q), &R = get(get(CGAL::vertex_point, m), r), &S = get(get(CGAL::vertex_point, m), s);
     const Vector_3 n1 = normal(P, Q, R), n2 = normal(Q, P, S);
     const Vector_3 m1 = normal(R, S, Q), m2 = normal(S, R, P);   // new triangles (r, s, q), (s, r, p)
-    const Vector_3 avg = n1 / std::sqrt(CGAL::to_double(n1.squared_length())) + n2 / std::sqrt(CGAL::to_double(n2.squared_length()));
+    // (area-weighted: the normal of a nearly flat triangle is noise)
+    const Vector_3 avg = n1 + n2;
     return cos_between(m1, avg) > cos_max && cos_between(m2, avg) > cos_max && cos_between(m1, m2) > cos_max;
   }
 
@@ -402,6 +418,123 @@ private:
       CGAL::Euler::flip_edge(h, m);
       ++stats.valence_flips;
     }
+  }
+
+  // the smallest angle of the triangles around v with v at `at`; -1 when one of them would turn
+  // over (its normal more than 60 degrees away from the current one)
+  template <class Mesh>
+  double min_angle_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, const Point_3& at) const
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    double worst = CGAL_PI;
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      if(is_border(h, m)) continue;
+      const Point_3& a = get(vpm, source(h, m));
+      const Point_3& b = get(vpm, target(next(h, m), m));
+      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return -1;
+      worst = std::min(worst, min_angle(a, at, b));
+    }
+    return worst;
+  }
+
+  template <class Mesh, class IsFeatureEdge, class IsCorner>
+  std::size_t angle_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
+                         Relaxation_statistics& stats) const
+  {
+    typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+    auto vpm = get(CGAL::vertex_point, m);
+    const double sliver = s.sliver_angle * CGAL_PI / 180;
+    std::vector<vertex_descriptor> todo;
+    for(auto f : faces(m)) {
+      const auto h = halfedge(f, m);
+      const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
+      if(min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sliver) continue;
+      for(vertex_descriptor x : v) if(constraint(x, m, is_feature, is_corner) < 2) todo.push_back(x);
+    }
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+    std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
+    if(!todo.empty()) {
+      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before));
+      for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+      std::sort(before.begin(), before.end());
+    }
+    std::size_t moved = 0;
+    std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
+    for(vertex_descriptor v : todo) {
+      const int c = constraint(v, m, is_feature, is_corner);
+      const Point_3 start = get(vpm, v);
+      Point_3 p = start;
+      double best = min_angle_around(v, m, p);
+      if(best < 0) continue;
+      // directions: the tangent plane (8 of them), or along the feature curve (2)
+      std::vector<Vector_3> dirs;
+      double mean = 0;
+      std::size_t n = 0;
+      Vector_3 nv(0, 0, 0);
+      for(auto h : CGAL::halfedges_around_target(v, m)) {
+        const Point_3& a = get(vpm, source(h, m));
+        mean += std::sqrt(CGAL::to_double(CGAL::squared_distance(a, p)));
+        ++n;
+        if(c == 1 && (is_feature(edge(h, m)) || is_border(edge(h, m), m))) {
+          const Vector_3 d = a - p;
+          dirs.push_back(d / std::sqrt(CGAL::to_double(d.squared_length())));
+        }
+        if(!is_border(h, m)) nv = nv + normal(a, p, get(vpm, target(next(h, m), m)));
+      }
+      if(n == 0) continue;
+      mean /= double(n);
+      if(c == 0) {
+        const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
+        if(!(ln > 0)) continue;
+        const Vector_3 nn = nv / ln;
+        Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
+        if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
+        u = u / std::sqrt(CGAL::to_double(u.squared_length()));
+        const Vector_3 w = CGAL::cross_product(nn, u);
+        for(int k = 0; k < 8; ++k) dirs.push_back(std::cos(k * CGAL_PI / 4) * u + std::sin(k * CGAL_PI / 4) * w);
+      }
+      if(dirs.empty()) continue;
+      for(double step = 0.2 * mean; step > 0.01 * mean;) {
+        Point_3 best_q = p;
+        double best_here = best;
+        for(const Vector_3& d : dirs) {
+          const Point_3 t = p + step * d;
+          const Point_3 q = c == 0 ? project_on_surface(t, p) : project_on_features(t, p);
+          if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+          const double a = min_angle_around(v, m, q);
+          if(a > best_here + 1e-9) { best_here = a; best_q = q; }
+        }
+        if(best_here > best) { best = best_here; p = best_q; }
+        else step *= 0.5;
+      }
+      if(p != start) { put(vpm, v, p); from.push_back({v, start}); ++moved; }
+    }
+    // a move may not make the mesh cut itself (thin parts): the moved vertices of triangles
+    // that intersect anew go back, until no new intersection is left
+    if(moved > 0) {
+      std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for(int round = 0; round < 8; ++round) {
+        std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+        CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+        std::size_t back = 0;
+        for(auto fp : pairs) {
+          if(fp.second < fp.first) std::swap(fp.first, fp.second);
+          if(std::binary_search(before.begin(), before.end(), fp)) continue;
+          for(face_descriptor f : {fp.first, fp.second})
+            for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) {
+              auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
+              if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
+            }
+        }
+        if(back == 0) break;
+        moved -= std::min(moved, back);
+        stats.refused_moves += back;
+      }
+    }
+    stats.angle_moves += moved;
+    return moved;
   }
 
   // what a vertex may do: 2 fixed (a corner, or where features meet), 1 slide on a feature, 0 free
@@ -495,7 +628,12 @@ private:
       const int ca = constraint(a, m, is_feature, is_corner), cb = constraint(b, m, is_feature, is_corner);
       if(ca < cb) std::swap(a, b);   // a is kept, b goes
       const int cr = std::min(ca, cb);
-      if(cr == 2) continue;                          // two fixed ends
+      // two fixed ends: two corners closer than the sampling allows are merged (the junction of
+      // more curves stays; the merged one moves by less than the sliver's short edge)
+      if(cr == 2) {
+        if(!s.merge_close_corners) continue;
+        if(feature_degree(b, m, is_feature) > feature_degree(a, m, is_feature)) std::swap(a, b);
+      }
       if(cr == 1 && !is_feature(e) && !is_border(e, m)) continue;   // a feature vertex leaves only along its curve
       if(!CGAL::Euler::does_satisfy_link_condition(e, m)) continue;
       const auto hba = halfedge(b, a, m).first;

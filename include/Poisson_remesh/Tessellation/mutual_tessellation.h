@@ -114,6 +114,9 @@ struct Mutual_tessellation_result
   std::vector<vertex_descriptor> leftover_vertices; ///< input vertices that could not be removed
   std::size_t number_of_inserted_samples = 0;       ///< samples inserted by a split
   std::size_t number_of_vertex_samples = 0;         ///< samples that were an input vertex
+  /// (i, j): sample i fell on the vertex of sample j and was merged into it (only seen inside
+  /// nearly zero-area input faces); sample_vertices[i] is that of j
+  std::vector<std::pair<std::size_t, std::size_t>> merged_samples;
   std::size_t number_of_flips = 0;
   std::size_t number_of_repair_flips = 0;           ///< flips that removed self-intersections (last step)
   std::size_t number_of_removed_vertices = 0;
@@ -174,10 +177,16 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
 
   const std::size_t ns = std::size_t(std::distance(samples.begin(), samples.end()));
   result.sample_vertices.assign(ns, GT::null_vertex());
+  // A sample that lands on the vertex of an earlier one (only inside (nearly) zero-area input
+  // faces, where the geodesic separation has no planar meaning) is merged into it and counted.
   auto mark = [&](vertex_descriptor w, std::size_t i) {
-    if(T.is_sample(w)) throw std::invalid_argument("mutual_tessellation: two samples on one vertex");
-    put(T.origin, w, long(i));
     result.sample_vertices[i] = w;
+    if(T.is_sample(w)) {
+      result.merged_samples.emplace_back(i, std::size_t(get(T.origin, w)));
+      return false;
+    }
+    put(T.origin, w, long(i));
+    return true;
   };
   auto add_sub_face = [&](face_descriptor f, std::size_t own) {
     put(T.owner, f, own);
@@ -236,7 +245,21 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
       const double lmin = std::min({l[0], l[1], l[2]});
       if(lmin > best) { best = lmin; best_h = h; best_b = l; }
     }
-    if(best_h == GT::null_halfedge()) throw std::runtime_error("mutual_tessellation: a sample's face has no sub-face");
+    if(best_h == GT::null_halfedge()) {
+      // no sub-face with an area in the face's plane: the input face has (nearly) none, and the
+      // sample is taken by the closest vertex of its sub-faces (it lies within the face's size)
+      vertex_descriptor w = GT::null_vertex();
+      double dmin = std::numeric_limits<double>::infinity();
+      for(face_descriptor f : sub_faces[get(fim, fin)])
+        for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, work), work)) {
+          const double d = internal::norm3(internal::sub3(T.xyz(x), p3));
+          if(d < dmin) { dmin = d; w = x; }
+        }
+      if(w == GT::null_vertex()) throw std::logic_error("mutual_tessellation: a sample's face has no sub-face");
+      mark(w, i);
+      ++result.number_of_vertex_samples;
+      continue;
+    }
     const double on_edge = 1e-10;
     int small = 0, kmin = 0, kbig = 0;
     for(int k = 0; k < 3; ++k) {
@@ -247,8 +270,7 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
     // vertex k of the sub-face: 0 = source(best_h), 1 = target(best_h), 2 = target(next(best_h))
     const halfedge_descriptor hk[3] = {prev(best_h, work), best_h, next(best_h, work)}; // target = vertex k
     if(small >= 2) {   // on an existing vertex of the tessellation
-      mark(target(hk[kbig], work), i);
-      put(vpm, target(hk[kbig], work), p);
+      if(mark(target(hk[kbig], work), i)) put(vpm, target(hk[kbig], work), p);
       ++result.number_of_vertex_samples;
       continue;
     }
@@ -399,6 +421,7 @@ mutual_tessellation(const TriangleMesh& input, const SampleRange& samples, const
     }
     result.vertices.push_back(rv);
   }
+  for(const auto& m : result.merged_samples) result.sample_vertices[m.first] = result.sample_vertices[m.second];
   return result;
 }
 
