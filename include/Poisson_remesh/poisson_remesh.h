@@ -43,7 +43,11 @@ struct Poisson_remesh_result
   `sharp_angle`, `corner_angle`, `minimum_feature_length`, `edge_is_constrained_map`),
   `density` (Uniform_density() by default; Curvature_density{...}, vertex_density(map) or
   point_density(function) for an adaptive remesh, §5: see density_fields.h),
-  `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings) and
+  `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings),
+  `fidelity_tolerance` (default 0.008: after the rounds, input vertices farther than this times
+  the input's bounding-box diagonal from the mesh -- rims and crests finer than the sample
+  spacing -- are inserted, at most 1% of the vertex count; 0 disables: see
+  Relaxation_settings::max_deviation) and
   `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features).
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
@@ -121,6 +125,8 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
   Relaxation_settings settings;
   settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
+  settings.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.max_deviation);
+  if(!(settings.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
   if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
     if(vertex_radii.empty()) {
       result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);

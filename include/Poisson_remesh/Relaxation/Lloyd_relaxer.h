@@ -64,6 +64,14 @@ struct Relaxation_settings
   double sliver_angle = 30;
   double sliver_edge_ratio = 0.45;
   unsigned int rounds_after_collapse = 3;
+  /// (beyond the paper) an input vertex farther than this (times the input's bounding-box
+  /// diagonal) from the relaxed mesh -- a rim or a crest finer than the sample spacing, cut
+  /// across by the triangles -- is inserted there (the nearest triangle split at it), at most
+  /// one per triangle and its neighbours; 0 disables. Needs the new-vertex callback of relax().
+  double max_deviation = 0.008;
+  /// at most this share of the vertex count is inserted so, farthest first (a mesh much too
+  /// coarse for its input everywhere is not mended by pinned vertices)
+  double max_deviation_insertions = 0.01;
   /// the collapses may also merge two corners joined by a sliver's short feature edge
   bool merge_close_corners = true;
   /// (beyond the paper) rounds of local angle optimization at the end: each movable vertex of a
@@ -83,6 +91,7 @@ struct Relaxation_statistics
 {
   std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
   std::size_t angle_moves = 0;   ///< moves of the final angle optimization
+  std::size_t fidelity_insertions = 0;   ///< input vertices inserted where the mesh cut across the input
 };
 
 template <class InputMesh, class GeomTraits>
@@ -108,6 +117,12 @@ public:
                                get(get(CGAL::vertex_point, input), target(halfedge(e, input), input)));
     if(!segments_.empty()) segment_tree_.insert(segments_.begin(), segments_.end());
     faces_.accelerate_distance_queries();
+    const auto& pts = get(CGAL::vertex_point, input);
+    if(!vertices(input).empty()) {
+      CGAL::Bbox_3 box;
+      for(auto v : vertices(input)) box += get(pts, v).bbox();
+      diagonal_ = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+    }
     if(!segments_.empty()) segment_tree_.accelerate_distance_queries();
   }
 
@@ -149,9 +164,12 @@ public:
   Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
                               NewVertex new_vertex, VertexDensity vertex_density) const
   {
-    auto lloyd_pass = [&](Mesh& m, IsFeatureEdge f, IsCorner c, Relaxation_statistics& st) {
+    auto lloyd_pass = [&](Mesh& m, IsFeatureEdge f, auto c, Relaxation_statistics& st) {
       this->lloyd_pass(m, f, c, st, vertex_density);
     };
+    typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+    std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity pass stay where they are put
+    auto is_fixed = [&](vertex_descriptor v) { return is_corner(v) || std::binary_search(pinned.begin(), pinned.end(), v); };
     Relaxation_statistics stats;
     for(unsigned int it = 0; it < s.iterations; ++it) {
       lloyd_pass(mesh, is_feature, is_corner, stats);
@@ -162,19 +180,28 @@ public:
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.long_edge_ratio > 0) changed += split_pass(mesh, is_feature, new_vertex, s, stats);
     if(s.collapse_slivers) changed += collapse_pass(mesh, is_feature, is_corner, s, stats);
+    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+      if(s.max_deviation > 0) changed += fidelity_pass(mesh, new_vertex, s, stats, pinned);
+    std::sort(pinned.begin(), pinned.end());
     if(changed > 0)
       for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) {
-        lloyd_pass(mesh, is_feature, is_corner, stats);
+        lloyd_pass(mesh, is_feature, is_fixed, stats);
+        if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
+        if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
+      }
+    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+      if(s.max_deviation > 0 && fidelity_pass(mesh, new_vertex, s, stats, pinned) > 0) {
+        std::sort(pinned.begin(), pinned.end());
         if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
         if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
       }
     // end on geometry: a last Lloyd pass and Delaunay flips
-    lloyd_pass(mesh, is_feature, is_corner, stats);
+    lloyd_pass(mesh, is_feature, is_fixed, stats);
     if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     // then the vertices of the triangles still sharper than sliver_angle (next to vertices that
     // may not move) raise the smallest angle around them
     for(unsigned int it = 0; it < s.angle_rounds; ++it) {
-      if(angle_pass(mesh, is_feature, is_corner, s, stats) == 0) break;
+      if(angle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
       if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     }
     return stats;
@@ -597,6 +624,77 @@ private:
     return done;
   }
 
+  template <class Mesh, class NewVertex>
+  std::size_t fidelity_pass(Mesh& m, NewVertex new_vertex, const Relaxation_settings& s, Relaxation_statistics& stats,
+                            std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added) const
+  {
+    typedef boost::graph_traits<Mesh> GT;
+    typedef typename GT::face_descriptor face_descriptor;
+    typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+    typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Primitive>> Tree;
+    auto vpm = get(CGAL::vertex_point, m);
+    auto in_vpm = get(CGAL::vertex_point, input_);
+    const double tol = s.max_deviation * diagonal_;
+    if(!(tol > 0) || faces(m).empty()) return 0;
+    Tree tree(faces(m).first, faces(m).second, m);
+    tree.accelerate_distance_queries();
+    std::vector<std::pair<double, Point_3>> far;
+    for(auto v : vertices(input_)) {
+      if(halfedge(v, input_) == boost::graph_traits<InputMesh>::null_halfedge()) continue;
+      const Point_3& p = get(in_vpm, v);
+      const double d2 = CGAL::to_double(tree.squared_distance(p));
+      if(d2 > tol * tol) far.push_back({d2, p});
+    }
+    if(far.empty()) return 0;
+    std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    typedef typename GT::vertex_descriptor vertex_descriptor;
+    std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before));
+    for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+    std::sort(before.begin(), before.end());
+    std::vector<face_descriptor> touched;
+    std::vector<vertex_descriptor> mine;
+    std::size_t done = 0;
+    const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_deviation_insertions * double(num_vertices(m))));
+    for(const auto& fp : far) {
+      if(mine.size() >= cap) break;
+      const face_descriptor f = tree.closest_point_and_primitive(fp.second).second;
+      if(std::find(touched.begin(), touched.end(), f) != touched.end()) continue;
+      // the triangle and its neighbours take one new vertex at most
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
+        touched.push_back(f);
+        if(!is_border(opposite(h, m), m)) touched.push_back(face(opposite(h, m), m));
+      }
+      const auto hnew = CGAL::Euler::add_center_vertex(halfedge(f, m), m);
+      const auto v = target(hnew, m);
+      put(vpm, v, fp.second);
+      mine.push_back(v);
+    }
+    // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
+    std::sort(mine.begin(), mine.end());
+    std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+    std::vector<vertex_descriptor> undo;
+    for(auto fp : pairs) {
+      if(fp.second < fp.first) std::swap(fp.first, fp.second);
+      if(std::binary_search(before.begin(), before.end(), fp)) continue;
+      for(face_descriptor f : {fp.first, fp.second})
+        for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m))
+          if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
+    }
+    std::sort(undo.begin(), undo.end());
+    undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
+    for(vertex_descriptor v : undo) CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
+    for(vertex_descriptor v : mine)
+      if(!std::binary_search(undo.begin(), undo.end(), v)) {
+        new_vertex(v, false);
+        added.push_back(v);
+        ++done;
+      }
+    stats.fidelity_insertions += done;
+    return done;
+  }
+
   template <class Mesh, class IsFeatureEdge, class IsCorner>
   std::size_t collapse_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s, Relaxation_statistics& stats) const
   {
@@ -680,6 +778,7 @@ public:
   bool area_weighted_ = true;
 private:
   const InputMesh& input_;
+  double diagonal_ = 0;
   Face_tree faces_;
   std::vector<Segment_3> segments_;
   Segment_tree segment_tree_;

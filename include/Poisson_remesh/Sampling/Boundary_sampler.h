@@ -63,7 +63,7 @@ struct Sampling_statistics
   std::size_t classification_propagations = 0; ///< propagations from boundary midpoints (§4.2.3 decisions)
   std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
   std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border
-  std::size_t dropped_arcs = 0;            ///< adaptive density: boundary arcs found inside an earlier sample's region
+  std::size_t dropped_arcs = 0;            ///< boundary arcs found inside an earlier sample's region (adaptive density) or with no finite point (zero-area faces)
 };
 
 namespace internal {
@@ -225,6 +225,13 @@ public:
     while(!boundary_.empty()) {
       std::size_t arc = 0;
       const Face_location loc = boundary_.pick([this] { return uniform01(); }, arc);
+      // an arc in a (nearly) zero-area face can give no finite point: it is dropped, and counted
+      const Face_location s = snapped(loc);
+      if(!(std::isfinite(s.second[0]) && std::isfinite(s.second[1]) && std::isfinite(s.second[2]))) {
+        boundary_.remove_arc(arc);
+        ++stats_.dropped_arcs;
+        continue;
+      }
       // adaptive density: a point already inside an earlier sample's region (d < r(p) + r(x))
       // means its arc was left behind by an update (a conic arc where the radius changes faster
       // than the distance on a needle face): the arc is dropped, and counted

@@ -21,6 +21,9 @@ POISSON_REMESH_add_named_parameter(geodesic_oracle_t, geodesic_oracle, geodesic_
 POISSON_REMESH_add_named_parameter(sampler_t, sampler, sampler)
 POISSON_REMESH_add_named_parameter(relaxer_t, relaxer, relaxer)
 
+// remesher: the largest deviation from the input mended by inserted input vertices
+POISSON_REMESH_add_named_parameter(fidelity_tolerance_t, fidelity_tolerance, fidelity_tolerance)
+
 // input reading and validation
 POISSON_REMESH_add_named_parameter(repair_degenerate_faces_t, repair_degenerate_faces, repair_degenerate_faces)
 

@@ -83,10 +83,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // one input in three with adaptive density (the conic available boundary of §5.1)
   const unsigned seed = b.next();
   const bool adaptive = b.next() % 3 == 0;
-  if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE")) std::fprintf(stderr, "%s density, target %zu\n", adaptive ? "adaptive" : "uniform", target);
+  if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE")) std::fprintf(stderr, "%s density, target %zu, seed %u\n", adaptive ? "adaptive" : "uniform", target, seed);
   if(adaptive) {
     PR::Curvature_density density;
     density.smoothing = b.next() % 4;
+    if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE")) std::fprintf(stderr, "smoothing %u\n", density.smoothing);
     PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(seed).number_of_iterations(3u).density(density));
   } else {
     PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(target).random_seed(seed).number_of_iterations(3u));
