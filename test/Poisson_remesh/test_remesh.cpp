@@ -361,7 +361,7 @@ TEST_CASE("samples inside nearly zero-area input faces do not stop the tessellat
   // collinear up to rounding (two samples fall on one vertex: merged), a patch with two
   // coincident points (no sub-face of the sample's face has an area: its closest vertex is used),
   // and a face of three collinear points where the uniform sampler's arc gave no finite point
-  // (the arc is dropped)
+  // (the arc is dropped), and one that took minutes
   struct Case { const char* off; std::size_t target; unsigned int seed, smoothing; bool adaptive = true; };
   const Case cases[] = {
     {"OFF\n9 7 0\n0 0 -0.040392156862745103\n0.5 0 -0.015294117647058826\n1 0 0.0098039215686274613\n"
@@ -378,6 +378,11 @@ TEST_CASE("samples inside nearly zero-area input faces do not stop the tessellat
      "0.5 0.5 0.0098039215686274613\n1 0.5 0.0098039215686274613\n0 1 0.0098039215686274613\n0.5 1 -0.015294117647058826\n"
      "1 1 -0.015294117647058826\n0.5 0.5 0.0098039215686274613\n"
      "3 0 1 2\n3 1 3 2\n3 8 6 5\n3 8 4 6\n3 4 7 6\n", 35, 147, 0, false},
+    // two needles folded onto each other: ~800 samples cut each other everywhere (the repairs
+    // that look for self-intersections stop early instead of taking minutes)
+    {"OFF\n4 2 0\n0.85747957022652077 -0.27336566471329449 -0.04911764705882353\n"
+     "0.85747957022652066 -0.2733656647132946 0.45088235294117646\n0.8582268291112497 -0.273603891872086 0.45088235294117646\n"
+     "-0.85747957022652077 0.27336566471329454 0.45088235294117646\n3 1 0 2\n3 1 2 3\n", 20, 0, 0},
   };
   for(const Case& c : cases) {
     Mesh in, out;

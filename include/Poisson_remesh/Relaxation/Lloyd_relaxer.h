@@ -483,7 +483,9 @@ private:
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
     std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
     if(!todo.empty()) {
-      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before));
+      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+      // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
+      if(before.size() > num_faces(m)) return 0;
       for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
       std::sort(before.begin(), before.end());
     }
@@ -544,7 +546,7 @@ private:
       std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       for(int round = 0; round < 8; ++round) {
         std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-        CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+        CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
         std::size_t back = 0;
         for(auto fp : pairs) {
           if(fp.second < fp.first) std::swap(fp.first, fp.second);
@@ -649,7 +651,8 @@ private:
     std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     typedef typename GT::vertex_descriptor vertex_descriptor;
     std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
-    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before));
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+    if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
     for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
     std::sort(before.begin(), before.end());
     std::vector<face_descriptor> touched;
@@ -673,7 +676,7 @@ private:
     // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
     std::sort(mine.begin(), mine.end());
     std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
     std::vector<vertex_descriptor> undo;
     for(auto fp : pairs) {
       if(fp.second < fp.first) std::swap(fp.first, fp.second);

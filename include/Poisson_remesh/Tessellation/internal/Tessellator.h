@@ -647,11 +647,12 @@ public:
         for(int j = 0; j < 3; ++j)
           if(tv[i] == fv[j]) { ++shared; si = i; sj = j; }
       const Triangle u(get(vpm, fv[0]), get(vpm, fv[1]), get(vpm, fv[2]));
+      if(u.is_degenerate()) continue;   // (no plane to cross; do_intersect needs one)
       if(shared == 0) n += CGAL::do_intersect(t, u) ? 1 : 0;
       else if(shared == 1) {
         const Segment st(get(vpm, tv[(si + 1) % 3]), get(vpm, tv[(si + 2) % 3]));
         const Segment su(get(vpm, fv[(sj + 1) % 3]), get(vpm, fv[(sj + 2) % 3]));
-        if(!u.is_degenerate() && (CGAL::do_intersect(st, u) || CGAL::do_intersect(su, t))) ++n;
+        if(CGAL::do_intersect(st, u) || CGAL::do_intersect(su, t)) ++n;
       }
     }
     return n;
@@ -665,12 +666,30 @@ public:
     std::size_t repaired = 0;
     for(std::size_t round = 0; round < rounds; ++round) {
       std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-      CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm));
+      CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm)
+                                                            .maximum_number(unsigned(2 * num_faces(tm) + 1)));
       if(pairs.empty()) break;
+      // a surface that cuts itself everywhere (input faces folded onto each other, found by
+      // fuzzing) has more crossings than flips can mend, at a cost quadratic in them: left alone
+      if(pairs.size() > 2 * num_faces(tm)) break;
       std::vector<face_descriptor> involved;
-      for(const auto& pr : pairs) { involved.push_back(pr.first); involved.push_back(pr.second); }
+      // each face with the faces it crosses (the crossings a flip is judged by: counting against
+      // every involved face made a round quadratic in their number)
+      std::vector<std::pair<face_descriptor, face_descriptor>> partner;
+      for(const auto& pr : pairs) {
+        involved.push_back(pr.first);
+        involved.push_back(pr.second);
+        partner.push_back(pr);
+        partner.push_back({pr.second, pr.first});
+      }
       std::sort(involved.begin(), involved.end());
       involved.erase(std::unique(involved.begin(), involved.end()), involved.end());
+      std::sort(partner.begin(), partner.end());
+      auto partners_of = [&](face_descriptor f, std::vector<face_descriptor>& out) {
+        for(auto it = std::lower_bound(partner.begin(), partner.end(), std::make_pair(f, face_descriptor()));
+            it != partner.end() && it->first == f; ++it)
+          out.push_back(it->second);
+      };
       std::size_t before = repaired;
       for(std::size_t i = 0; i < involved.size(); ++i) {
         for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(involved[i], tm), tm)) {
@@ -680,8 +699,10 @@ public:
           if(c == d || edge_exists(c, d) || degree(a, tm) <= 3 || degree(b, tm) <= 3) continue;
           const Vec3 pa = xyz(a), pb = xyz(b), pc = xyz(c), pd = xyz(d);
           if(!(norm3(triangle_normal(pc, pa, pd)) > 0) || !(norm3(triangle_normal(pd, pb, pc)) > 0)) continue;
-          // the faces to count against: those involved, and the stars of the quad's corners
-          std::vector<face_descriptor> others = involved;
+          // the faces to count against: those the two faces cross, and the stars of the quad's corners
+          std::vector<face_descriptor> others;
+          partners_of(face(h, tm), others);
+          if(!is_border(opposite(h, tm), tm)) partners_of(face(opposite(h, tm), tm), others);
           for(vertex_descriptor x : {a, b, c, d})
             for(face_descriptor f : CGAL::faces_around_target(halfedge(x, tm), tm))
               if(f != GT::null_face()) others.push_back(f);
