@@ -7,7 +7,7 @@
 // Time is wall-clock time of the remesh call alone (reading and reporting excluded), single-threaded.
 //
 // usage: remesh_benchmark [--meshes fandisk,triceratops,...] [--factor F] [--contenders a,b]
-//                         [--markdown FILE] [--json FILE]
+//                         [--markdown FILE] [--json FILE]   (tables on stdout; files only when named)
 #include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
@@ -189,7 +189,8 @@ int main(int argc, char** argv)
   // (poisson_adaptive, the curvature-adaptive remesh, runs when asked for with --contenders)
   std::vector<std::string> names = {"cgal_isotropic", "poisson_remesh"};
   double factor = 1.0;
-  std::string markdown = "RESULTS.md", json = "results.json", data = POISSON_REMESH_DATA_DIR;
+  // no file unless asked for (a default name once overwrote the hand-written RESULTS.md)
+  std::string markdown, json, data = POISSON_REMESH_DATA_DIR;
   bool scale_table = false;
   for(int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -270,10 +271,12 @@ int main(int argc, char** argv)
     }
   }
   std::cout << md.str();
-  std::ofstream(markdown) << "<!-- written by remesh_benchmark on " << date << " -->\n"
+  if(!markdown.empty())
+    std::ofstream(markdown) << "<!-- written by remesh_benchmark on " << date << " -->\n"
                           << "Machine: " << machine_description() << "\n\n"
                           << "Target: " << factor << " × the input's vertex count; time is one remesh call, single-threaded.\n\n"
                           << md.str();
+  if(json.empty()) return 0;
   std::ofstream js(json);
   js.precision(10);
   js << "{\n  \"date\": \"" << date << "\",\n  \"machine\": \"" << machine_description() << "\",\n  \"factor\": " << factor << ",\n  \"rows\": [\n";
