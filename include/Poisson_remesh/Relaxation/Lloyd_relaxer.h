@@ -525,7 +525,10 @@ private:
         for(int k = 0; k < 8; ++k) dirs.push_back(std::cos(k * CGAL_PI / 4) * u + std::sin(k * CGAL_PI / 4) * w);
       }
       if(dirs.empty()) continue;
-      for(double step = 0.2 * mean; step > 0.01 * mean;) {
+      // (at most 40 steps: gains that never stop, however small -- a flat double-sided sheet
+      // found by fuzzing -- kept the step from shrinking)
+      double step = 0.2 * mean;
+      for(int iteration = 0; iteration < 40 && step > 0.01 * mean; ++iteration) {
         Point_3 best_q = p;
         double best_here = best;
         for(const Vector_3& d : dirs) {
@@ -535,7 +538,7 @@ private:
           const double a = min_angle_around(v, m, q);
           if(a > best_here + 1e-9) { best_here = a; best_q = q; }
         }
-        if(best_here > best) { best = best_here; p = best_q; }
+        if(best_here > best + 1e-6) { best = best_here; p = best_q; }
         else step *= 0.5;
       }
       if(p != start) { put(vpm, v, p); from.push_back({v, start}); ++moved; }
