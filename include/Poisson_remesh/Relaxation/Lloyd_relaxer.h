@@ -447,6 +447,30 @@ private:
     }
   }
 
+  // the intersecting face pairs of m, each (smaller, larger), sorted; the search stops past twice
+  // the face count (a mesh that cuts itself everywhere: folded input)
+  template <class Mesh>
+  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
+  intersecting_pairs(const Mesh& m) const
+  {
+    std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+    for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  }
+
+  // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs)
+  template <class Mesh, class Pairs, class F>
+  void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, F f) const
+  {
+    for(const auto& fp : intersecting_pairs(m)) {
+      if(std::binary_search(before.begin(), before.end(), fp)) continue;
+      for(auto face : {fp.first, fp.second})
+        for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
+    }
+  }
+
   // the smallest angle of the triangles around v with v at `at`; -1 when one of them would turn
   // over (its normal more than 60 degrees away from the current one)
   template <class Mesh>
@@ -483,11 +507,9 @@ private:
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
     std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
     if(!todo.empty()) {
-      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+      before = intersecting_pairs(m);
       // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
       if(before.size() > num_faces(m)) return 0;
-      for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-      std::sort(before.begin(), before.end());
     }
     std::size_t moved = 0;
     std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
@@ -548,18 +570,11 @@ private:
     if(moved > 0) {
       std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       for(int round = 0; round < 8; ++round) {
-        std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-        CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
         std::size_t back = 0;
-        for(auto fp : pairs) {
-          if(fp.second < fp.first) std::swap(fp.first, fp.second);
-          if(std::binary_search(before.begin(), before.end(), fp)) continue;
-          for(face_descriptor f : {fp.first, fp.second})
-            for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) {
-              auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
-              if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
-            }
-        }
+        for_vertices_of_new_intersections(m, before, [&](vertex_descriptor x) {
+          auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
+          if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
+        });
         if(back == 0) break;
         moved -= std::min(moved, back);
         stats.refused_moves += back;
@@ -653,11 +668,8 @@ private:
     if(far.empty()) return 0;
     std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     typedef typename GT::vertex_descriptor vertex_descriptor;
-    std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
-    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(before), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+    const auto before = intersecting_pairs(m);   // intersections there already
     if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
-    for(auto& fp : before) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-    std::sort(before.begin(), before.end());
     std::vector<face_descriptor> touched;
     std::vector<vertex_descriptor> mine;
     std::size_t done = 0;
@@ -678,16 +690,10 @@ private:
     }
     // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
     std::sort(mine.begin(), mine.end());
-    std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
     std::vector<vertex_descriptor> undo;
-    for(auto fp : pairs) {
-      if(fp.second < fp.first) std::swap(fp.first, fp.second);
-      if(std::binary_search(before.begin(), before.end(), fp)) continue;
-      for(face_descriptor f : {fp.first, fp.second})
-        for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m))
-          if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
-    }
+    for_vertices_of_new_intersections(m, before, [&](vertex_descriptor x) {
+      if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
+    });
     std::sort(undo.begin(), undo.end());
     undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
     for(vertex_descriptor v : undo) CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
