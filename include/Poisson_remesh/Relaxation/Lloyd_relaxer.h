@@ -19,7 +19,11 @@
 //     border), under the same guards and without making the smallest angle much worse.
 // The three alternate for `iterations` rounds (default 10; see Relaxation_settings). Then, beyond
 // the paper, slivers whose short edge no move can lengthen (pinned by corners or feature samples)
-// lose that edge by a guarded collapse onto its more constrained end, and a few rounds follow.
+// lose that edge by a guarded collapse onto its more constrained end (two corners too close are
+// merged), input vertices far from the mesh are inserted and pinned (fidelity insertions), and a
+// few rounds follow; at the very end the vertices of the triangles still under sliver_angle move
+// to raise their smallest angle (angle optimization). Moves and insertions that make the mesh cut
+// itself anew are taken back.
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -72,7 +76,7 @@ struct Relaxation_settings
   /// at most this share of the vertex count is inserted so, farthest first (a mesh much too
   /// coarse for its input everywhere is not mended by pinned vertices)
   double max_deviation_insertions = 0.01;
-  /// the collapses may also merge two corners joined by a sliver's short feature edge
+  /// the sliver collapses may also merge two corners joined by the sliver's short edge
   bool merge_close_corners = true;
   /// (beyond the paper) rounds of local angle optimization at the end: each movable vertex of a
   /// triangle sharper than `sliver_angle` moves (on the input; a feature vertex along its curve)
