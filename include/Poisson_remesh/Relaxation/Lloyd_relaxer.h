@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <array>
+#include <set>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -674,19 +675,18 @@ private:
     typedef typename GT::vertex_descriptor vertex_descriptor;
     const auto before = intersecting_pairs(m);   // intersections there already
     if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
-    std::vector<face_descriptor> touched;
+    std::set<face_descriptor> touched;
     std::vector<vertex_descriptor> mine;
     std::size_t done = 0;
     const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_deviation_insertions * double(num_vertices(m))));
     for(const auto& fp : far) {
       if(mine.size() >= cap) break;
       const face_descriptor f = tree.closest_point_and_primitive(fp.second).second;
-      if(std::find(touched.begin(), touched.end(), f) != touched.end()) continue;
+      if(touched.count(f)) continue;
       // the triangle and its neighbours take one new vertex at most
-      for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
-        touched.push_back(f);
-        if(!is_border(opposite(h, m), m)) touched.push_back(face(opposite(h, m), m));
-      }
+      touched.insert(f);
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
+        if(!is_border(opposite(h, m), m)) touched.insert(face(opposite(h, m), m));
       const auto hnew = CGAL::Euler::add_center_vertex(halfedge(f, m), m);
       const auto v = target(hnew, m);
       put(vpm, v, fp.second);

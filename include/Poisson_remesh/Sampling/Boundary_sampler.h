@@ -235,7 +235,7 @@ public:
       // adaptive density: a point already inside an earlier sample's region (d < r(p) + r(x))
       // means its arc was left behind by an update (a conic arc where the radius changes faster
       // than the distance on a needle face): the arc is dropped, and counted
-      if(!vertex_radius_.empty() && covered_by_earlier_adaptive_samples(snapped(loc))) {
+      if(!vertex_radius_.empty() && covered_by_earlier_adaptive_samples(s)) {
         boundary_.remove_arc(arc);
         ++stats_.dropped_arcs;
         continue;
