@@ -45,7 +45,7 @@ struct Row
   bool ok = false;
   std::string error;
   double input_vertices = 0, input_faces = 0, target = 0, vertices = 0, faces = 0;
-  double min_angle = 0, mean_min_angle = 0, below_30 = 0, irregular = 0, hausdorff = 0;
+  double min_angle = 0, min_angle_away = 0, mean_min_angle = 0, below_30 = 0, irregular = 0, hausdorff = 0;
   double self_intersections = 0, genus_kept = 0, seconds = 0, peak_mib = 0;
 };
 
@@ -105,7 +105,8 @@ static void run_row(const std::string& contender, const Contender& run, const st
     const PR::Quality_report in = PR::quality_report(input, PR::parameters::check_self_intersections(false));
     const PR::Quality_report r = PR::quality_report(output, input);
     os << "ok 1\ninput_vertices " << num_vertices(input) << "\ninput_faces " << num_faces(input) << "\ntarget " << target << "\nvertices " << r.number_of_vertices
-       << "\nfaces " << r.number_of_faces << "\nmin_angle " << r.min_angle << "\nmean_min_angle " << r.mean_min_angle
+       << "\nfaces " << r.number_of_faces << "\nmin_angle " << r.min_angle
+       << "\nmin_angle_away " << *r.min_angle_away_from_sharp_corners << "\nmean_min_angle " << r.mean_min_angle
        << "\nbelow_30 " << r.share_min_angle_below_30 << "\nirregular " << r.irregular_share
        << "\nhausdorff " << (r.hausdorff ? *r.hausdorff : -1) << "\nself_intersections " << r.number_of_self_intersecting_face_pairs
        << "\ngenus_kept " << (r.genus == in.genus && r.number_of_components == in.number_of_components ? 1 : 0)
@@ -155,7 +156,7 @@ static Row run_in_child(const std::string& contender, const Contender& run, cons
   }
   row.ok = true;
   row.input_vertices = v["input_vertices"]; row.input_faces = v["input_faces"]; row.target = v["target"]; row.vertices = v["vertices"]; row.faces = v["faces"];
-  row.min_angle = v["min_angle"]; row.mean_min_angle = v["mean_min_angle"]; row.below_30 = v["below_30"];
+  row.min_angle = v["min_angle"]; row.min_angle_away = v["min_angle_away"]; row.mean_min_angle = v["mean_min_angle"]; row.below_30 = v["below_30"];
   row.irregular = v["irregular"]; row.hausdorff = v["hausdorff"]; row.self_intersections = v["self_intersections"];
   row.genus_kept = v["genus_kept"]; row.seconds = v["seconds"]; row.peak_mib = v["peak_mib"];
   return row;
@@ -233,12 +234,12 @@ int main(int argc, char** argv)
   char date[64];
   std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
   std::ostringstream md;
-  md << "| contender | mesh | input V | target V | V | θmin (°) | θ̄min (°) | <30° (%) | irregular (%) | Hausdorff (% diag) | self-int. pairs | topology kept | seconds | peak MiB |\n"
-     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|\n";
+  md << "| contender | mesh | input V | target V | V | θmin (°) | θmin away from sharp corners (°) | θ̄min (°) | <30° (%) | irregular (%) | Hausdorff (% diag) | self-int. pairs | topology kept | seconds | peak MiB |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|\n";
   for(const Row& r : rows) {
-    if(!r.ok) { md << "| " << r.contender << " | " << r.mesh << " | failed: " << r.error << " |||||||||||\n"; continue; }
+    if(!r.ok) { md << "| " << r.contender << " | " << r.mesh << " | failed: " << r.error << " ||||||||||||\n"; continue; }
     md << "| " << r.contender << " | " << r.mesh << " | " << fmt(r.input_vertices, 0) << " | " << fmt(r.target, 0) << " | "
-       << fmt(r.vertices, 0) << " | " << fmt(r.min_angle, 2) << " | " << fmt(r.mean_min_angle, 2) << " | "
+       << fmt(r.vertices, 0) << " | " << fmt(r.min_angle, 2) << " | " << fmt(r.min_angle_away, 2) << " | " << fmt(r.mean_min_angle, 2) << " | "
        << fmt(100 * r.below_30, 2) << " | " << fmt(100 * r.irregular, 1) << " | " << fmt(100 * r.hausdorff, 3) << " | "
        << fmt(r.self_intersections, 0) << " | " << (r.genus_kept ? "yes" : "no") << " | " << fmt(r.seconds, 3) << " | "
        << fmt(r.peak_mib, 0) << " |\n";
@@ -285,7 +286,7 @@ int main(int argc, char** argv)
     js << "    {\"contender\": \"" << r.contender << "\", \"mesh\": \"" << r.mesh << "\", \"ok\": " << (r.ok ? "true" : "false");
     if(r.ok)
       js << ", \"input_vertices\": " << r.input_vertices << ", \"input_faces\": " << r.input_faces << ", \"target_vertices\": " << r.target << ", \"vertices\": " << r.vertices
-         << ", \"faces\": " << r.faces << ", \"min_angle_deg\": " << r.min_angle << ", \"mean_min_angle_deg\": " << r.mean_min_angle
+         << ", \"faces\": " << r.faces << ", \"min_angle_deg\": " << r.min_angle << ", \"min_angle_away_from_sharp_corners_deg\": " << r.min_angle_away << ", \"mean_min_angle_deg\": " << r.mean_min_angle
          << ", \"share_min_angle_below_30\": " << r.below_30 << ", \"irregular_share\": " << r.irregular
          << ", \"hausdorff_over_diagonal\": " << r.hausdorff << ", \"self_intersecting_pairs\": " << r.self_intersections
          << ", \"topology_kept\": " << (r.genus_kept ? "true" : "false") << ", \"seconds\": " << r.seconds

@@ -22,6 +22,7 @@
 #include <CGAL/Kernel/global_functions.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -30,6 +31,7 @@
 #include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <iterator>
@@ -79,6 +81,11 @@ struct Quality_report
   // against a reference (the input of a remesh)
   std::optional<double> hausdorff;      ///< two-sided, over the reference's bbox diagonal
   std::optional<double> hausdorff_absolute;
+  /// theta_min leaving out the angles at the reference's sharp corners: vertices of the
+  /// reference whose own angle is under 30 degrees, so that no mesh keeping them can do better
+  /// there (see quality_report(tm, reference, np))
+  std::optional<double> min_angle_away_from_sharp_corners;
+  std::size_t number_of_angles_at_sharp_corners = 0;   ///< the angles left out of it
 };
 
 namespace internal {
@@ -229,6 +236,98 @@ void fill_valences(const TriangleMesh& tm, Report& r)
   r.irregular_share = counted ? double(irregular) / double(counted) : 0;
 }
 
+
+// theta_min of tm without the angles at sharp corners of `reference`. A vertex of tm at the same
+// point as a vertex v of the reference, in a triangle whose direction from v (to the midpoint of
+// the opposite edge) lies in a sector of v whose own angle is under 30 degrees, is left out. The
+// sectors of v are delimited by its sharp edges (dihedral angle sharper than sharp_angle, CGAL
+// detect_sharp_edges) and border edges; a sector's own angle is the sum of the reference's angles
+// at v in it over the least number of triangles that can fill it: 1 between two sharp edges, 3
+// around a vertex with fewer (a cone tip: a closed surface has at least 3 triangles there).
+template <class TriangleMesh, class VPM, class ReferenceMesh>
+void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref, double sharp_angle, Quality_report& r)
+{
+  typedef boost::graph_traits<ReferenceMesh> RGT;
+  typedef typename RGT::vertex_descriptor ref_vertex;
+  typedef typename RGT::face_descriptor ref_face;
+  typedef std::array<double, 3> V3;
+  auto rvpm = get_const_property_map(CGAL::vertex_point, ref);
+  auto to_v3 = [](const auto& p) { return V3{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}; };
+  auto sub = [](const V3& a, const V3& b) { return V3{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto cross = [](const V3& a, const V3& b) { return V3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; };
+  auto dot = [](const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto angle = [&](const V3& u, const V3& w) { return std::atan2(std::sqrt(dot(cross(u, w), cross(u, w))), dot(u, w)) * 180 / CGAL_PI; };
+
+  auto sharp = get(CGAL::dynamic_edge_property_t<bool>(), ref);
+  CGAL::Polygon_mesh_processing::detect_sharp_edges(ref, sharp_angle, sharp);
+  auto is_cut = [&](typename RGT::halfedge_descriptor h) { return is_border_edge(h, ref) || get(sharp, edge(h, ref)); };
+
+  // the reference's vertices with a sector under 30 degrees, and the own angle of each face's sector there
+  std::map<V3, std::vector<std::pair<ref_face, double>>> corners;
+  for(ref_vertex v : vertices(ref)) {
+    if(halfedge(v, ref) == RGT::null_halfedge()) continue;
+    std::vector<typename RGT::halfedge_descriptor> ring;   // halfedges into v, in turning order
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, ref), ref)) ring.push_back(h);
+    const std::size_t n = ring.size();
+    // face i is face(ring[i]); it meets face i+1 across edge(next(ring[i]))
+    std::size_t cuts = 0, first_cut = n;
+    for(std::size_t i = 0; i < n; ++i)
+      if(is_cut(next(ring[i], ref))) { ++cuts; if(first_cut == n) first_cut = i; }
+    const double least = cuts >= 2 ? 1 : 3;
+    std::vector<std::pair<ref_face, double>> sectors;
+    const std::size_t start = cuts == 0 ? 0 : first_cut + 1;
+    double sum = 0;
+    std::vector<ref_face> members;
+    bool small = false;
+    for(std::size_t k = 0; k < n; ++k) {
+      const auto h = ring[(start + k) % n];
+      if(!is_border(h, ref)) {
+        const V3 o = to_v3(get(rvpm, v));
+        sum += angle(sub(to_v3(get(rvpm, source(h, ref))), o), sub(to_v3(get(rvpm, target(next(h, ref), ref))), o));
+        members.push_back(face(h, ref));
+      }
+      if(k + 1 == n || (cuts >= 2 && is_cut(next(h, ref)))) {
+        if(sum / least < 30) small = true;
+        for(ref_face f : members) sectors.push_back({f, sum / least});
+        sum = 0;
+        members.clear();
+      }
+    }
+    if(small) corners[to_v3(get(rvpm, v))] = std::move(sectors);
+  }
+
+  double worst = 180;
+  for(auto f : faces(tm)) {
+    auto h = halfedge(f, tm);
+    for(int k = 0; k < 3; ++k, h = next(h, tm)) {
+      const V3 c = to_v3(get(vpm, target(h, tm))), a = to_v3(get(vpm, source(h, tm))), b = to_v3(get(vpm, target(next(h, tm), tm)));
+      const double x = angle(sub(a, c), sub(b, c));
+      auto it = corners.find(c);
+      if(it != corners.end()) {
+        // the reference face around the corner whose wedge holds the triangle's direction best
+        const V3 d = sub(V3{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2}, c);
+        double best = -std::numeric_limits<double>::infinity(), own = 180;
+        for(const auto& [rf, bound] : it->second) {
+          const auto rh = halfedge(rf, ref);
+          V3 q[3] = {to_v3(get(rvpm, source(rh, ref))), to_v3(get(rvpm, target(rh, ref))), to_v3(get(rvpm, target(next(rh, ref), ref)))};
+          int i = 0;
+          while(i < 3 && q[i] != c) ++i;
+          if(i == 3) continue;
+          const V3 u = sub(q[(i + 1) % 3], c), w = sub(q[(i + 2) % 3], c), nrm = cross(u, w);
+          const double ln = std::sqrt(dot(nrm, nrm)) * std::sqrt(dot(d, d));
+          if(!(ln > 0)) continue;
+          const double score = std::min(dot(cross(u, d), nrm) / (ln * std::sqrt(dot(u, u))),
+                                        dot(cross(d, w), nrm) / (ln * std::sqrt(dot(w, w))));
+          if(score > best) { best = score; own = bound; }
+        }
+        if(own < 30) { ++r.number_of_angles_at_sharp_corners; continue; }
+      }
+      if(std::isfinite(x)) worst = std::min(worst, x);
+    }
+  }
+  r.min_angle_away_from_sharp_corners = worst;
+}
+
 } // namespace internal
 
 /*!
@@ -277,8 +376,12 @@ Quality_report quality_report(const TriangleMesh& tm,
   `CGAL::Polygon_mesh_processing::bounded_error_symmetric_Hausdorff_distance()`), absolute and
   over the reference's bounding-box diagonal.
 
-  Extra named parameter: `hausdorff_relative_error_bound` (default 1e-4): the error bound of the
-  Hausdorff estimate, relative to the reference's bounding-box diagonal.
+  Extra named parameters: `hausdorff_relative_error_bound` (default 1e-4): the error bound of the
+  Hausdorff estimate, relative to the reference's bounding-box diagonal; `sharp_angle` (degrees,
+  default 60): the dihedral angle of the reference's sharp edges, for
+  `min_angle_away_from_sharp_corners` (theta_min without the angles at corners of the reference
+  whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees, wedges
+  between sharp edges under 30 degrees; there no mesh keeping the corner reaches 30).
 */
 template <class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property,
@@ -299,6 +402,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     tm, reference, rel_bound * diag, CGAL::parameters::vertex_point_map(vpm));
   r.hausdorff_absolute = h;
   r.hausdorff = diag > 0 ? h / diag : 0.0;
+  internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
   return r;
 }
 

@@ -237,6 +237,34 @@ TEST_CASE("quality report finds self-intersections and measures the Hausdorff di
   }
 }
 
+TEST_CASE("quality report leaves out only the angles at the reference's sharp corners", "[quality]")
+{
+  SECTION("a sharp tetrahedron: its angles under 30 degrees are all at corners whose own angle is smaller") {
+    analytic::Soup s;
+    const double a = 20 * CGAL_PI / 180;
+    s.points = {{0, 0, 0}, {1, 0, 0}, {std::cos(a), std::sin(a), 0}, {0.6, 0.2, 0.9}};
+    s.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+    const Mesh m = s.to_mesh<Mesh>();
+    const PR::Quality_report r = PR::quality_report(m, m);
+    CHECK(r.min_angle < 20.5);
+    REQUIRE(r.min_angle_away_from_sharp_corners);
+    CHECK(r.number_of_angles_at_sharp_corners >= 2);
+    CHECK(*r.min_angle_away_from_sharp_corners >= 30);
+  }
+  SECTION("a skinny triangle inside a plane is no corner's fault") {
+    Mesh m = analytic::plane(8, 8).to_mesh<Mesh>();
+    for(auto v : vertices(m)) {
+      if(is_border(v, m)) continue;
+      m.point(v) = m.point(v) + 0.7 * (m.point(source(halfedge(v, m), m)) - m.point(v));
+      break;
+    }
+    const PR::Quality_report r = PR::quality_report(m, m);
+    CHECK(r.min_angle < 15);
+    CHECK(r.number_of_angles_at_sharp_corners == 0);
+    CHECK(*r.min_angle_away_from_sharp_corners == Approx(r.min_angle));
+  }
+}
+
 TEST_CASE("quality report is the same on Polyhedron_3 and Surface_mesh", "[quality][polyhedron]")
 {
   Mesh sm;
