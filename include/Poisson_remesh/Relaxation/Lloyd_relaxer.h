@@ -487,41 +487,25 @@ private:
     }
   }
 
-  // the smallest angle of the triangles around v with v at `at`; -1 when one of them would turn
-  // over (its normal more than 60 degrees away from the current one)
+  // the smallest angle of the triangles around v with v at `at`, and the sum of their smallest
+  // angles; (-1, -1) when one of them would turn over (its normal more than 60 degrees away from
+  // the current one)
   template <class Mesh>
-  double min_angle_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, const Point_3& at) const
+  std::pair<double, double> smallest_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m,
+                                                   const Point_3& at) const
   {
     auto vpm = get(CGAL::vertex_point, m);
-    double worst = CGAL_PI;
+    double worst = CGAL_PI, sum = 0;
     for(auto h : CGAL::halfedges_around_target(v, m)) {
       if(is_border(h, m)) continue;
       const Point_3& a = get(vpm, source(h, m));
       const Point_3& b = get(vpm, target(next(h, m), m));
-      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return -1;
-      worst = std::min(worst, min_angle(a, at, b));
-    }
-    return worst;
-  }
-
-  // the sum of the smallest angles of the triangles around v with v at `at`; -1 when one of them
-  // would turn over or have a smallest angle under `floor`
-  template <class Mesh>
-  double sum_of_min_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, const Point_3& at,
-                                  double floor) const
-  {
-    auto vpm = get(CGAL::vertex_point, m);
-    double sum = 0;
-    for(auto h : CGAL::halfedges_around_target(v, m)) {
-      if(is_border(h, m)) continue;
-      const Point_3& a = get(vpm, source(h, m));
-      const Point_3& b = get(vpm, target(next(h, m), m));
-      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return -1;
+      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return {-1, -1};
       const double x = min_angle(a, at, b);
-      if(x < floor) return -1;
+      worst = std::min(worst, x);
       sum += x;
     }
-    return sum;
+    return {worst, sum};
   }
 
   enum class Angle_goal { smallest, sum_of_smallest };
@@ -566,9 +550,11 @@ private:
       const int c = constraint(v, m, is_feature, is_corner);
       const Point_3 start = get(vpm, v);
       Point_3 p = start;
-      const double floor = smoothing ? min_angle_around(v, m, p) : 0;
+      const double floor = smallest_angles_around(v, m, p).first;
       auto objective = [&](const Point_3& q) {
-        return smoothing ? sum_of_min_angles_around(v, m, q, floor) : min_angle_around(v, m, q);
+        const auto [smallest, sum] = smallest_angles_around(v, m, q);
+        if(!smoothing || smallest < 0) return smallest;
+        return smallest < floor ? -1.0 : sum;
       };
       double best = objective(p);
       if(best < 0) continue;
