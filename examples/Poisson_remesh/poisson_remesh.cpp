@@ -175,6 +175,10 @@ int main(int argc, char** argv)
     if(run.relaxation.fidelity_insertions)
       std::cout << "  note: " << run.relaxation.fidelity_insertions
                 << " input vertices farther than the fidelity tolerance from the mesh were inserted\n";
+    if(run.relaxation.refinement_insertions || run.relaxation.refinement_removals)
+      std::cout << "  note: beside triangles still under 30 degrees, " << run.relaxation.refinement_insertions
+                << " vertices were inserted and " << run.relaxation.refinement_removals << " removed ("
+                << run.relaxation.refinement_flips << " flips)\n";
     if(run.number_of_merged_samples)
       std::cout << "  note: " << run.number_of_merged_samples
                 << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";

@@ -243,7 +243,12 @@ void fill_valences(const TriangleMesh& tm, Report& r)
 // sectors of v are delimited by its sharp edges (dihedral angle sharper than sharp_angle, CGAL
 // detect_sharp_edges) and border edges; a sector's own angle is the sum of the reference's angles
 // at v in it over the least number of triangles that can fill it: 1 between two sharp edges, 3
-// around a vertex with fewer (a cone tip: a closed surface has at least 3 triangles there).
+// around a vertex with fewer (a cone tip: a closed surface has at least 3 triangles there). At a
+// tip of tm -- on a vertex v of the reference with fewer than two sharp edges that is the
+// pointiest (largest angle defect) within s of it, s the mean length of the tip's edges in tm --
+// the sum is the cone angle at that scale: 360 degrees minus the angle defects of the reference's
+// vertices well inside it, within 0.9 s (Gauss-Bonnet: a mesh keeping the tip with edges that long turns around it by
+// that angle, whatever the reference's own triangles do at v).
 template <class TriangleMesh, class VPM, class ReferenceMesh>
 void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref, double sharp_angle, Quality_report& r)
 {
@@ -262,8 +267,50 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   CGAL::Polygon_mesh_processing::detect_sharp_edges(ref, sharp_angle, sharp);
   auto is_cut = [&](typename RGT::halfedge_descriptor h) { return is_border_edge(h, ref) || get(sharp, edge(h, ref)); };
 
+  // angle defects (degrees; 0 on borders), and the cone angle at `scale` of the tips
+  auto defect = get(CGAL::dynamic_vertex_property_t<double>(), ref);
+  for(ref_vertex v : vertices(ref)) {
+    double sum = 0;
+    if(halfedge(v, ref) != RGT::null_halfedge() && !is_border(v, ref)) {
+      const V3 o = to_v3(get(rvpm, v));
+      for(auto h : CGAL::halfedges_around_target(halfedge(v, ref), ref))
+        sum += angle(sub(to_v3(get(rvpm, source(h, ref))), o), sub(to_v3(get(rvpm, target(next(h, ref), ref))), o));
+      put(defect, v, 360 - sum);
+    } else {
+      put(defect, v, 0.0);
+    }
+  }
+  auto visited = get(CGAL::dynamic_vertex_property_t<std::size_t>(), ref);
+  for(ref_vertex v : vertices(ref)) put(visited, v, std::size_t(0));
+  std::size_t visit = 0;
+  // 360 minus the defects within `scale` of v, or 360 when v is not the pointiest there
+  auto cone_angle = [&](ref_vertex v, double scale) {
+    if(!(scale > 0) || !(get(defect, v) > 0)) return 360.0;
+    ++visit;
+    std::vector<ref_vertex> stack{v};
+    put(visited, v, visit);
+    const V3 o = to_v3(get(rvpm, v));
+    double sum = 0;
+    while(!stack.empty()) {
+      const ref_vertex w = stack.back();
+      stack.pop_back();
+      const double dw = get(defect, w);
+      if(dw > get(defect, v)) return 360.0;
+      sum += dw;
+      for(auto h : CGAL::halfedges_around_target(halfedge(w, ref), ref)) {
+        const ref_vertex x = source(h, ref);
+        if(get(visited, x) == visit) continue;
+        put(visited, x, visit);
+        const V3 d = sub(to_v3(get(rvpm, x)), o);
+        if(dot(d, d) <= 0.81 * scale * scale) stack.push_back(x);   // (well inside: 0.9 scale)
+      }
+    }
+    return 360 - sum;
+  };
+
   // the reference's vertices with a sector under 30 degrees, and the own angle of each face's sector there
   std::map<V3, std::vector<std::pair<ref_face, double>>> corners;
+  std::map<V3, ref_vertex> tips;   // the other vertices with fewer than two sharp edges and a positive defect
   for(ref_vertex v : vertices(ref)) {
     if(halfedge(v, ref) == RGT::null_halfedge()) continue;
     std::vector<typename RGT::halfedge_descriptor> ring;   // halfedges into v, in turning order
@@ -294,8 +341,22 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
       }
     }
     if(small) corners[to_v3(get(rvpm, v))] = std::move(sectors);
+    else if(cuts < 2 && get(defect, v) > 0) tips[to_v3(get(rvpm, v))] = v;
   }
+  // the own angle at a vertex of tm on a tip: the cone angle at the mean length of its edges, over 3
+  auto tip_angle = [&](typename boost::graph_traits<TriangleMesh>::vertex_descriptor x, ref_vertex v) {
+    double length = 0;
+    std::size_t n = 0;
+    const V3 o = to_v3(get(vpm, x));
+    for(auto h : CGAL::halfedges_around_target(halfedge(x, tm), tm)) {
+      const V3 d = sub(to_v3(get(vpm, source(h, tm))), o);
+      length += std::sqrt(dot(d, d));
+      ++n;
+    }
+    return n ? cone_angle(v, length / double(n)) / 3 : 180.0;
+  };
 
+  std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double> tip_angles;
   double worst = 180;
   for(auto f : faces(tm)) {
     auto h = halfedge(f, tm);
@@ -321,6 +382,10 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
           if(score > best) { best = score; own = bound; }
         }
         if(own < 30) { ++r.number_of_angles_at_sharp_corners; continue; }
+      } else if(auto tip = tips.find(c); tip != tips.end()) {
+        auto cached = tip_angles.find(target(h, tm));
+        if(cached == tip_angles.end()) cached = tip_angles.insert({target(h, tm), tip_angle(target(h, tm), tip->second)}).first;
+        if(cached->second < 30) { ++r.number_of_angles_at_sharp_corners; continue; }
       }
       if(std::isfinite(x)) worst = std::min(worst, x);
     }
@@ -380,8 +445,10 @@ Quality_report quality_report(const TriangleMesh& tm,
   Hausdorff estimate, relative to the reference's bounding-box diagonal; `sharp_angle` (degrees,
   default 60): the dihedral angle of the reference's sharp edges, for
   `min_angle_away_from_sharp_corners` (theta_min without the angles at corners of the reference
-  whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees, wedges
-  between sharp edges under 30 degrees; there no mesh keeping the corner reaches 30).
+  whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees -- the input's
+  own, or the cone angle at the scale of the tip's edges in tm, 360 degrees minus the reference's
+  angle defects within 0.9 of it, at a tip that is the pointiest there --, wedges between sharp edges
+  under 30 degrees; there no mesh keeping the corner reaches 30).
 */
 template <class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property,

@@ -251,6 +251,46 @@ TEST_CASE("quality report leaves out only the angles at the reference's sharp co
     CHECK(r.number_of_angles_at_sharp_corners >= 2);
     CHECK(*r.min_angle_away_from_sharp_corners >= 30);
   }
+  SECTION("a tip whose input angle sum is 96 degrees but whose cone angle at the mesh's scale is 60") {
+    // reference: a cone tip of half-angle 16 degrees over 0.1 (angle sum 96 at the apex), bending
+    // to a half-angle of 9.6 degrees (cone angle 60) down to a flat base; six vertices per ring
+    analytic::Soup s;
+    const double a1 = std::asin(96.0 / 360.0), a2 = std::asin(60.0 / 360.0);   // cone angle = 360 sin(half-angle)
+    const double r1 = 0.1 * std::sin(a1), z1 = 1 - 0.1 * std::cos(a1);
+    const double r2 = r1 + 0.5 * std::sin(a2), z2 = z1 - 0.5 * std::cos(a2);
+    const double r3 = r1 + 1.0 * std::sin(a2), z3 = z1 - 1.0 * std::cos(a2);
+    s.points.push_back({0, 0, 1});
+    for(const auto& rz : {std::make_pair(r1, z1), std::make_pair(r2, z2), std::make_pair(r3, z3)})
+      for(int i = 0; i < 6; ++i) s.points.push_back({rz.first * std::cos(i * CGAL_PI / 3), rz.first * std::sin(i * CGAL_PI / 3), rz.second});
+    s.points.push_back({0, 0, z3});
+    auto ring = [](int k, int i) { return std::size_t(1 + 6 * k + (i % 6)); };
+    for(int i = 0; i < 6; ++i) {
+      s.triangles.push_back({0, ring(0, i), ring(0, i + 1)});
+      for(int k = 0; k < 2; ++k) {
+        s.triangles.push_back({ring(k, i), ring(k + 1, i), ring(k + 1, i + 1)});
+        s.triangles.push_back({ring(k, i), ring(k + 1, i + 1), ring(k, i + 1)});
+      }
+      s.triangles.push_back({19, ring(2, i + 1), ring(2, i)});
+    }
+    const Mesh ref = s.to_mesh<Mesh>();
+    // the mesh: the apex and three points on the base rim (midpoints of rim edges: just inside the
+    // reach of the rim's vertices), a tetrahedron whose apex angles are about 19 degrees
+    analytic::Soup t;
+    t.points.push_back({0, 0, 1});
+    for(int i : {0, 2, 4}) {
+      const K::Point_3 p = CGAL::midpoint(K::Point_3(s.points[ring(2, i)][0], s.points[ring(2, i)][1], s.points[ring(2, i)][2]),
+                                          K::Point_3(s.points[ring(2, i + 1)][0], s.points[ring(2, i + 1)][1], s.points[ring(2, i + 1)][2]));
+      t.points.push_back({p.x(), p.y(), p.z()});
+    }
+    t.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+    const Mesh m = t.to_mesh<Mesh>();
+    const PR::Quality_report own = PR::quality_report(ref, ref), r = PR::quality_report(m, ref);
+    CHECK(own.number_of_angles_at_sharp_corners == 0);   // at the input's own scale the tip is 96 / 3 = 32 degrees
+    CHECK(r.min_angle < 25);
+    CHECK(r.number_of_angles_at_sharp_corners == 3);     // the three apex angles
+    REQUIRE(r.min_angle_away_from_sharp_corners);
+    CHECK(*r.min_angle_away_from_sharp_corners >= 59);   // the base and the side triangles' other angles
+  }
   SECTION("a skinny triangle inside a plane is no corner's fault") {
     Mesh m = analytic::plane(8, 8).to_mesh<Mesh>();
     for(auto v : vertices(m)) {

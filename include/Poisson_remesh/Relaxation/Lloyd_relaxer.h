@@ -22,7 +22,9 @@
 // lose that edge by a guarded collapse onto its more constrained end (two corners too close are
 // merged), input vertices far from the mesh are inserted and pinned (fidelity insertions), and a
 // few rounds follow; at the very end the vertices of the triangles still under sliver_angle move
-// to raise their smallest angle (angle optimization). Moves and insertions that make the mesh cut
+// to raise their smallest angle (angle optimization), after a smoothing of all vertices and
+// regularity flips; last, the triangles still sharper than that get a flip, a vertex removal or
+// a vertex insertion beside them (refinement). Moves and insertions that make the mesh cut
 // itself anew are taken back.
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -97,6 +99,22 @@ struct Relaxation_settings
   /// from the edge or a new triangle would turn; 0 disables. Needs the callback that tells the
   /// caller about the new vertex (see relax()).
   double long_edge_ratio = 1.6;
+  /// (beyond the paper) rounds of refinement at the very end: a triangle still sharper than
+  /// `sliver_angle` (its vertices could not move enough: corners, feature samples) gets the best
+  /// of three local changes when it beats the old triangles' smallest angle by a degree: a flip of
+  /// one of its edges; the removal of a free vertex of degree 3 of it (when the vertex is within a
+  /// quarter of max_deviation of the new triangle); or a new vertex on one of the two edges at its
+  /// smallest angle, placed on the input (on the features for a feature edge) where the four new
+  /// triangles have the largest smallest angle -- the small angle's wedge is shared with the
+  /// neighbour's angle, as Ruppert's refinement does. Changes that make the mesh cut itself are
+  /// taken back; Delaunay flips and the angle optimization follow. 0 disables. Needs the
+  /// new-vertex callback of relax().
+  unsigned int refinement_rounds = 3;
+  /// (beyond the paper) rounds of regularity flips after the smoothing: a flip is made when fewer
+  /// of its four vertices are irregular after it and both new triangles keep their smallest angle
+  /// over `regularity_min_angle`; each round is followed by a smoothing round; 0 disables.
+  unsigned int regularity_rounds = 2;
+  double regularity_min_angle = 35;
 };
 
 struct Relaxation_statistics
@@ -104,6 +122,8 @@ struct Relaxation_statistics
   std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
   std::size_t angle_moves = 0;   ///< moves of the final angle optimization
   std::size_t fidelity_insertions = 0;   ///< input vertices inserted where the mesh cut across the input
+  std::size_t refinement_insertions = 0;   ///< vertices inserted beside triangles still sharper than sliver_angle
+  std::size_t refinement_flips = 0, refinement_removals = 0;   ///< the other changes of the refinement
 };
 
 template <class InputMesh, class GeomTraits>
@@ -216,10 +236,25 @@ public:
       if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::sum_of_smallest) == 0) break;
       if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     }
+    for(unsigned int it = 0; it < s.regularity_rounds; ++it) {
+      if(regularity_pass(mesh, is_feature, s, stats) == 0) break;
+      angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::sum_of_smallest);
+    }
     for(unsigned int it = 0; it < s.angle_rounds; ++it) {
       if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
       if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     }
+    // and where the angles are still too small, the connectivity changes there (a flip, a vertex
+    // removed or inserted)
+    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+      for(unsigned int round = 0; round < s.refinement_rounds; ++round) {
+        if(refinement_pass(mesh, is_feature, is_fixed, new_vertex, s, stats) == 0) break;
+        if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
+        for(unsigned int it = 0; it < s.angle_rounds; ++it) {
+          if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
+          if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
+        }
+      }
     return stats;
   }
 
@@ -439,6 +474,34 @@ private:
     return sum * 180 / CGAL_PI / 60 + (is_border(v, m) ? 1 : 0);
   }
 
+  // flips that make fewer of their four vertices irregular (valence not 6, not 4 on a border),
+  // keeping both new triangles' smallest angle over regularity_min_angle
+  template <class Mesh, class IsFeatureEdge>
+  std::size_t regularity_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats) const
+  {
+    const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
+    const double floor = s.regularity_min_angle * CGAL_PI / 180;
+    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
+    std::size_t flips = 0;
+    for(auto e : edges(m)) {
+      if(is_feature(e) || is_border(e, m)) continue;
+      auto h = halfedge(e, m);
+      const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+      if(degree(p, m) <= 3 || degree(q, m) <= 3 || halfedge(r, t, m).second) continue;
+      const int before = irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0);
+      const int after = irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1);
+      if(after >= before) continue;
+      const Point_3 &P = get(get(CGAL::vertex_point, m), p), &Q = get(get(CGAL::vertex_point, m), q), &R = get(get(CGAL::vertex_point, m), r), &T = get(get(CGAL::vertex_point, m), t);
+      const double new_min = std::min(min_angle(R, T, Q), min_angle(T, R, P));
+      if(new_min < floor) continue;
+      if(!flip_is_safe(h, m, cos_max)) continue;
+      CGAL::Euler::flip_edge(h, m);
+      ++flips;
+    }
+    stats.valence_flips += flips;
+    return flips;
+  }
+
   template <class Mesh, class IsFeatureEdge>
   void valence_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats) const
   {
@@ -525,14 +588,20 @@ private:
     const bool smoothing = goal == Angle_goal::sum_of_smallest;
     const double sliver = s.sliver_angle * CGAL_PI / 180;
     std::vector<vertex_descriptor> todo;
+    // a feature vertex with one feature edge (the output's edge along its curve is a chord too far
+    // from the curve to count) slides along the curve too when it is at a sliver
+    auto movability = [&](vertex_descriptor x) {
+      const int c = constraint(x, m, is_feature, is_corner);
+      return !smoothing && c == 2 && !is_corner(x) && feature_degree(x, m, is_feature) == 1 ? 1 : c;
+    };
     if(smoothing) {
-      for(vertex_descriptor x : vertices(m)) if(constraint(x, m, is_feature, is_corner) < 2) todo.push_back(x);
+      for(vertex_descriptor x : vertices(m)) if(movability(x) < 2) todo.push_back(x);
     } else {
       for(auto f : faces(m)) {
         const auto h = halfedge(f, m);
         const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
         if(min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sliver) continue;
-        for(vertex_descriptor x : v) if(constraint(x, m, is_feature, is_corner) < 2) todo.push_back(x);
+        for(vertex_descriptor x : v) if(movability(x) < 2) todo.push_back(x);
       }
       std::sort(todo.begin(), todo.end());
       todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
@@ -547,7 +616,7 @@ private:
     std::size_t moved = 0;
     std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
     for(vertex_descriptor v : todo) {
-      const int c = constraint(v, m, is_feature, is_corner);
+      const int c = movability(v);
       const Point_3 start = get(vpm, v);
       Point_3 p = start;
       const double floor = smallest_angles_around(v, m, p).first;
@@ -575,6 +644,9 @@ private:
       }
       if(n == 0) continue;
       mean /= double(n);
+      // (one feature edge: the vertex may be the loose end of a curve at a tip, it moves little)
+      const bool loose_end = c == 1 && dirs.size() == 1;
+      if(loose_end) dirs.push_back(-dirs[0]);
       if(c == 0) {
         const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
         if(!(ln > 0)) continue;
@@ -597,6 +669,7 @@ private:
           const Point_3 t = p + step * d;
           const Point_3 q = in_plane ? t : c == 0 ? project_on_surface(t, p) : project_on_features(t, p);
           if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+          if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
           const double a = objective(q);
           if(a > best_here + 1e-9) { best_here = a; best_q = q; }
         }
@@ -686,6 +759,210 @@ private:
     }
     stats.splits += done;
     return done;
+  }
+
+  // a vertex on an edge of each triangle sharper than sliver_angle (see refinement_rounds)
+  template <class Mesh, class IsFeatureEdge, class IsCorner, class NewVertex>
+  std::size_t refinement_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, NewVertex new_vertex, const Relaxation_settings& s,
+                              Relaxation_statistics& stats) const
+  {
+    typedef boost::graph_traits<Mesh> GT;
+    typedef typename GT::vertex_descriptor vertex_descriptor;
+    typedef typename GT::halfedge_descriptor halfedge_descriptor;
+    typedef typename GT::face_descriptor face_descriptor;
+    auto vpm = get(CGAL::vertex_point, m);
+    const double sliver = s.sliver_angle * CGAL_PI / 180, gain = CGAL_PI / 180;
+    // a new vertex on the edge of h, a flip of that edge, or the removal of the free vertex
+    // target(h) of degree 3
+    enum class Operation { split, flip, remove };
+    struct Candidate { double gain; halfedge_descriptor h; Point_3 at; bool on_feature; Operation op; };
+    std::vector<Candidate> candidates;
+    for(face_descriptor f : faces(m)) {
+      const halfedge_descriptor hf = halfedge(f, m);
+      const vertex_descriptor v[3] = {source(hf, m), target(hf, m), target(next(hf, m), m)};
+      const Point_3 p[3] = {get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])};
+      const double old_f = min_angle(p[0], p[1], p[2]);
+      if(!(old_f < sliver)) continue;
+      // the vertex of the smallest angle, and the two edges there
+      const double a[3] = {angle(p[1], p[0], p[2]), angle(p[0], p[1], p[2]), angle(p[0], p[2], p[1])};
+      const int k = int(std::min_element(a, a + 3) - a);
+      Candidate best{0, GT::null_halfedge(), Point_3(), false, Operation::split};
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(hf, m)) {
+        // flip: the two new triangles beat the two old ones
+        if(!is_feature(edge(h, m)) && !is_border(edge(h, m), m)) {
+          const vertex_descriptor c = target(next(h, m), m), d = target(next(opposite(h, m), m), m);
+          const Point_3 &A = get(vpm, source(h, m)), &B = get(vpm, target(h, m)), &C = get(vpm, c), &D = get(vpm, d);
+          const Vector_3 n = normal(A, B, C) + normal(B, A, D);
+          if(c != d && !halfedge(c, d, m).second && cos_between(normal(C, A, D), n) > 0.5 && cos_between(normal(D, B, C), n) > 0.5) {
+            const double old = std::min(old_f, min_angle(B, A, D));
+            const double value = std::min(min_angle(C, A, D), min_angle(D, B, C));
+            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::flip};
+          }
+        }
+        // removal of target(h), a free vertex of degree 3: its three triangles become one
+        const vertex_descriptor x = target(h, m);
+        if(degree(x, m) == 3 && !is_fixed(x) && constraint(x, m, is_feature, is_fixed) == 0 && !is_border(x, m)) {
+          double old = CGAL_PI;
+          Vector_3 n(0, 0, 0);
+          for(halfedge_descriptor g : CGAL::halfedges_around_target(x, m)) {
+            const Point_3 &P = get(vpm, source(g, m)), &Q = get(vpm, target(next(g, m), m));
+            old = std::min(old, min_angle(P, get(vpm, x), Q));
+            n = n + normal(P, get(vpm, x), Q);
+          }
+          // the new triangle runs along the link edges next(next(g)) = (b, a) of the faces (a, x, b)
+          const halfedge_descriptor link = next(next(halfedge(x, m), m), m);
+          // (the next link edge, from target(link), is in the face across the edge (x, target(link)))
+          const Point_3 &P = get(vpm, source(link, m)), &Q = get(vpm, target(link, m));
+          const Point_3& third = get(vpm, target(next(opposite(next(link, m), m), m), m));
+          // (and the removed vertex is close to the new triangle: a tip is not cut off)
+          const double tol = (s.max_deviation > 0 ? 0.25 * s.max_deviation : 0.002) * diagonal_;
+          if(cos_between(normal(P, Q, third), n) > 0.5 &&
+             CGAL::to_double(CGAL::squared_distance(get(vpm, x), typename GeomTraits::Triangle_3(P, Q, third))) <= tol * tol) {
+            const double value = min_angle(P, Q, third);
+            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::remove};
+          }
+        }
+      }
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(hf, m)) {
+        if(source(h, m) != v[k] && target(h, m) != v[k]) continue;
+        if(is_border(opposite(h, m), m)) continue;
+        const Point_3 &A = get(vpm, source(h, m)), &B = get(vpm, target(h, m));
+        const Point_3 &C = get(vpm, target(next(h, m), m)), &D = get(vpm, target(next(opposite(h, m), m), m));
+        const double old = std::min(old_f, min_angle(B, A, D));
+        const bool on_feature = is_feature(edge(h, m));
+        const Vector_3 n1 = normal(A, B, C), n2 = normal(B, A, D);
+        // the four triangles (A, q, C), (q, B, C), (B, q, D), (q, A, D): the smallest angle, or -1
+        // when one turns over
+        auto objective = [&](const Point_3& q) {
+          if(cos_between(normal(A, q, C), n1) < 0.5 || cos_between(normal(q, B, C), n1) < 0.5 ||
+             cos_between(normal(B, q, D), n2) < 0.5 || cos_between(normal(q, A, D), n2) < 0.5) return -1.0;
+          return std::min({min_angle(A, q, C), min_angle(q, B, C), min_angle(B, q, D), min_angle(q, A, D)});
+        };
+        const Point_3 mid = CGAL::midpoint(A, B);
+        const double length = std::sqrt(CGAL::to_double(CGAL::squared_distance(A, B)));
+        Point_3 q = on_feature ? project_on_features(mid) : project_on_surface(mid);
+        if(CGAL::to_double(CGAL::squared_distance(q, mid)) > CGAL::square(0.25 * length)) continue;   // thin parts
+        double value = objective(q);
+        if(value < 0) continue;
+        // pattern search: along the edge for a feature edge, else in the plane of the two faces
+        std::vector<Vector_3> dirs;
+        const Vector_3 ab = (B - A) / length;
+        dirs.push_back(ab);
+        dirs.push_back(-ab);
+        if(!on_feature) {
+          Vector_3 nn = n1 / std::sqrt(CGAL::to_double(n1.squared_length())) + n2 / std::sqrt(CGAL::to_double(n2.squared_length()));
+          const Vector_3 w = CGAL::cross_product(nn, ab);
+          const double lw = std::sqrt(CGAL::to_double(w.squared_length()));
+          if(!(lw > 0)) continue;
+          for(int sign : {1, -1}) {
+            dirs.push_back(double(sign) * w / lw);
+            dirs.push_back(std::sqrt(0.5) * (ab + double(sign) * w / lw));
+            dirs.push_back(std::sqrt(0.5) * (-ab + double(sign) * w / lw));
+          }
+        }
+        double step = 0.2 * length;
+        for(int iteration = 0; iteration < 30 && step > 0.01 * length; ++iteration) {
+          Point_3 best_q = q;
+          double best_here = value;
+          for(const Vector_3& d : dirs) {
+            const Point_3 t = q + step * d;
+            const Point_3 r = on_feature ? project_on_features(t, q) : project_on_surface(t, q);
+            if(CGAL::to_double(CGAL::squared_distance(r, t)) > CGAL::square(0.25 * length)) continue;
+            const double x = objective(r);
+            if(x > best_here + 1e-9) { best_here = x; best_q = r; }
+          }
+          if(best_here > value + 1e-6) { value = best_here; q = best_q; }
+          else step *= 0.5;
+        }
+        if(value > old + gain && value - old > best.gain) best = {value - old, h, q, on_feature, Operation::split};
+      }
+      if(best.h != GT::null_halfedge()) candidates.push_back(best);
+    }
+    if(candidates.empty()) return 0;
+    const auto before = intersecting_pairs(m);
+    if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.gain > y.gain; });
+    std::set<face_descriptor> touched;
+    struct Inserted { vertex_descriptor v; bool on_feature; vertex_descriptor a, b; };   // on the old edge (a, b)
+    std::vector<Inserted> mine;
+    std::vector<halfedge_descriptor> flipped;
+    struct Removed { halfedge_descriptor h; Point_3 at; };   // a halfedge of the new triangle, where the vertex was
+    std::vector<Removed> removed;
+    for(const Candidate& c : candidates) {
+      // the faces changed and their neighbours take one change at most
+      std::vector<face_descriptor> around;
+      if(c.op == Operation::remove) {
+        for(halfedge_descriptor g : CGAL::halfedges_around_target(target(c.h, m), m)) around.push_back(face(g, m));
+      } else {
+        around = {face(c.h, m), face(opposite(c.h, m), m)};
+      }
+      if(std::any_of(around.begin(), around.end(), [&](face_descriptor f) { return touched.count(f) > 0; })) continue;
+      for(face_descriptor f : around)
+        for(halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, m), m))
+          if(!is_border(opposite(g, m), m)) touched.insert(face(opposite(g, m), m));
+      if(c.op == Operation::flip) {
+        const vertex_descriptor a = target(next(c.h, m), m), b = target(next(opposite(c.h, m), m), m);
+        if(halfedge(a, b, m).second) continue;
+        CGAL::Euler::flip_edge(c.h, m);
+        flipped.push_back(c.h);
+        continue;
+      }
+      if(c.op == Operation::remove) {
+        const Point_3 at = get(vpm, target(c.h, m));
+        removed.push_back({CGAL::Euler::remove_center_vertex(halfedge(target(c.h, m), m), m), at});
+        continue;
+      }
+      const vertex_descriptor a = source(c.h, m), b = target(c.h, m);
+      const halfedge_descriptor g0 = opposite(c.h, m);
+      const halfedge_descriptor hnew = CGAL::Euler::split_edge(c.h, m);   // hnew points to the new vertex
+      const vertex_descriptor v = target(hnew, m);
+      put(vpm, v, c.at);
+      CGAL::Euler::split_face(hnew, next(next(hnew, m), m), m);
+      CGAL::Euler::split_face(g0, next(next(g0, m), m), m);
+      mine.push_back({v, c.on_feature, a, b});
+    }
+    // a change that makes the mesh cut itself is taken back: an inserted vertex's four triangles
+    // become the two old ones, a flip is flipped back, a removed vertex comes back
+    std::vector<face_descriptor> cut;   // the faces of the new intersections
+    for(const auto& fp : intersecting_pairs(m))
+      if(!std::binary_search(before.begin(), before.end(), fp)) { cut.push_back(fp.first); cut.push_back(fp.second); }
+    std::sort(cut.begin(), cut.end());
+    auto is_cut = [&](face_descriptor f) { return std::binary_search(cut.begin(), cut.end(), f); };
+    std::size_t changed = 0;
+    for(halfedge_descriptor h : flipped) {
+      if(is_cut(face(h, m)) || is_cut(face(opposite(h, m), m))) { CGAL::Euler::flip_edge(h, m); ++stats.refused_moves; }
+      else { ++changed; ++stats.refinement_flips; }
+    }
+    for(const Removed& r : removed) {
+      if(is_cut(face(r.h, m))) {
+        put(vpm, target(CGAL::Euler::add_center_vertex(r.h, m), m), r.at);
+        ++stats.refused_moves;
+      } else {
+        ++changed;
+        ++stats.refinement_removals;
+      }
+    }
+    std::vector<Inserted> undo;
+    for(const Inserted& x : mine)
+      for(halfedge_descriptor g : CGAL::halfedges_around_target(x.v, m))
+        if(is_cut(face(g, m))) { undo.push_back(x); break; }
+    auto by_vertex = [](const Inserted& x, const Inserted& y) { return x.v < y.v; };
+    std::sort(undo.begin(), undo.end(), by_vertex);
+    for(const Inserted& u : undo) {
+      const halfedge_descriptor g = CGAL::Euler::remove_center_vertex(halfedge(u.v, m), m);
+      halfedge_descriptor to_a = GT::null_halfedge(), to_b = GT::null_halfedge();
+      for(halfedge_descriptor x : CGAL::halfedges_around_face(g, m)) {
+        if(target(x, m) == u.a) to_a = x;
+        if(target(x, m) == u.b) to_b = x;
+      }
+      CGAL::Euler::split_face(to_a, to_b, m);
+      ++stats.refused_moves;
+    }
+    std::size_t done = 0;
+    for(const Inserted& x : mine)
+      if(!std::binary_search(undo.begin(), undo.end(), x, by_vertex)) { new_vertex(x.v, x.on_feature); ++done; }
+    stats.refinement_insertions += done;
+    return done + changed;
   }
 
   template <class Mesh, class NewVertex>
