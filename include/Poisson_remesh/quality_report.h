@@ -245,7 +245,7 @@ void fill_valences(const TriangleMesh& tm, Report& r)
 // at v in it over the least number of triangles that can fill it: 1 between two sharp edges, 3
 // around a vertex with fewer (a cone tip: a closed surface has at least 3 triangles there). At a
 // tip of tm -- on a vertex v of the reference with fewer than two sharp edges that is the
-// pointiest (largest angle defect) within s of it, s the mean length of the tip's edges in tm --
+// pointiest (largest angle defect) within 0.9 s of it, s the mean length of the tip's edges in tm --
 // the sum is the cone angle at that scale: 360 degrees minus the angle defects of the reference's
 // vertices well inside it, within 0.9 s (Gauss-Bonnet: a mesh keeping the tip with edges that long turns around it by
 // that angle, whatever the reference's own triangles do at v).

@@ -775,7 +775,16 @@ private:
     // a new vertex on the edge of h, a flip of that edge, or the removal of the free vertex
     // target(h) of degree 3
     enum class Operation { split, flip, remove };
-    struct Candidate { double gain; halfedge_descriptor h; Point_3 at; bool on_feature; Operation op; };
+    struct Candidate
+    {
+      double gain;
+      halfedge_descriptor h;
+      Point_3 at;
+      bool on_feature;
+      Operation op;
+      std::vector<face_descriptor> faces;   // the faces the change replaces (checked before h is used)
+    };
+    const double cos_refine = 0.5;
     std::vector<Candidate> candidates;
     for(face_descriptor f : faces(m)) {
       const halfedge_descriptor hf = halfedge(f, m);
@@ -786,40 +795,53 @@ private:
       // the vertex of the smallest angle, and the two edges there
       const double a[3] = {angle(p[1], p[0], p[2]), angle(p[0], p[1], p[2]), angle(p[0], p[2], p[1])};
       const int k = int(std::min_element(a, a + 3) - a);
-      Candidate best{0, GT::null_halfedge(), Point_3(), false, Operation::split};
+      Candidate best{0, GT::null_halfedge(), Point_3(), false, Operation::split, {}};
       for(halfedge_descriptor h : CGAL::halfedges_around_face(hf, m)) {
         // flip: the two new triangles beat the two old ones
         if(!is_feature(edge(h, m)) && !is_border(edge(h, m), m)) {
-          const vertex_descriptor c = target(next(h, m), m), d = target(next(opposite(h, m), m), m);
-          const Point_3 &A = get(vpm, source(h, m)), &B = get(vpm, target(h, m)), &C = get(vpm, c), &D = get(vpm, d);
-          const Vector_3 n = normal(A, B, C) + normal(B, A, D);
-          if(c != d && !halfedge(c, d, m).second && cos_between(normal(C, A, D), n) > 0.5 && cos_between(normal(D, B, C), n) > 0.5) {
+          const Point_3 &A = get(vpm, source(h, m)), &B = get(vpm, target(h, m));
+          const Point_3 &C = get(vpm, target(next(h, m), m)), &D = get(vpm, target(next(opposite(h, m), m), m));
+          // (the guards of the Delaunay flips, with the looser normal change of the tessellation's
+          // removals, 60 degrees: the triangles here are the worst of the mesh, their normals noisy)
+          if(flip_is_safe(h, m, cos_refine)) {
             const double old = std::min(old_f, min_angle(B, A, D));
             const double value = std::min(min_angle(C, A, D), min_angle(D, B, C));
-            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::flip};
+            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::flip, {f, face(opposite(h, m), m)}};
           }
         }
         // removal of target(h), a free vertex of degree 3: its three triangles become one
         const vertex_descriptor x = target(h, m);
-        if(degree(x, m) == 3 && !is_fixed(x) && constraint(x, m, is_feature, is_fixed) == 0 && !is_border(x, m)) {
+        // (constraint 0: no corner, no feature or border edge; is_fixed: no pinned vertex either)
+        if(degree(x, m) == 3 && !is_fixed(x) && constraint(x, m, is_feature, is_fixed) == 0) {
           double old = CGAL_PI;
           Vector_3 n(0, 0, 0);
+          std::vector<face_descriptor> star;
+          bool closed = false;   // the three neighbours bound a face already (a tetrahedron)
           for(halfedge_descriptor g : CGAL::halfedges_around_target(x, m)) {
             const Point_3 &P = get(vpm, source(g, m)), &Q = get(vpm, target(next(g, m), m));
             old = std::min(old, min_angle(P, get(vpm, x), Q));
             n = n + normal(P, get(vpm, x), Q);
+            star.push_back(face(g, m));
+            // the link edge (b, a) of face (a, x, b): the face across it must not be (a, b, c)
+            const halfedge_descriptor across = opposite(next(next(g, m), m), m);
+            if(!is_border(across, m)) {
+              const vertex_descriptor w = target(next(across, m), m);
+              for(halfedge_descriptor k : CGAL::halfedges_around_target(x, m))
+                if(source(k, m) == w && w != source(g, m) && w != target(next(g, m), m)) closed = true;
+            }
           }
           // the new triangle runs along the link edges next(next(g)) = (b, a) of the faces (a, x, b)
           const halfedge_descriptor link = next(next(halfedge(x, m), m), m);
           // (the next link edge, from target(link), is in the face across the edge (x, target(link)))
           const Point_3 &P = get(vpm, source(link, m)), &Q = get(vpm, target(link, m));
           const Point_3& third = get(vpm, target(next(opposite(next(link, m), m), m), m));
+          if(closed) continue;
           // (and the removed vertex is close to the new triangle: a tip is not cut off)
           const double tol = (s.max_deviation > 0 ? 0.25 * s.max_deviation : 0.002) * diagonal_;
           if(cos_between(normal(P, Q, third), n) > 0.5 &&
              CGAL::to_double(CGAL::squared_distance(get(vpm, x), typename GeomTraits::Triangle_3(P, Q, third))) <= tol * tol) {
             const double value = min_angle(P, Q, third);
-            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::remove};
+            if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::remove, star};
           }
         }
       }
@@ -874,7 +896,7 @@ private:
           if(best_here > value + 1e-6) { value = best_here; q = best_q; }
           else step *= 0.5;
         }
-        if(value > old + gain && value - old > best.gain) best = {value - old, h, q, on_feature, Operation::split};
+        if(value > old + gain && value - old > best.gain) best = {value - old, h, q, on_feature, Operation::split, {f, face(opposite(h, m), m)}};
       }
       if(best.h != GT::null_halfedge()) candidates.push_back(best);
     }
@@ -888,21 +910,20 @@ private:
     std::vector<halfedge_descriptor> flipped;
     struct Removed { halfedge_descriptor h; Point_3 at; };   // a halfedge of the new triangle, where the vertex was
     std::vector<Removed> removed;
+    // (the removals last: the faces they free are not reused by a split of this pass, which would
+    // pair them with the old faces' intersections in `before`)
+    std::stable_partition(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.op != Operation::remove; });
     for(const Candidate& c : candidates) {
-      // the faces changed and their neighbours take one change at most
-      std::vector<face_descriptor> around;
-      if(c.op == Operation::remove) {
-        for(halfedge_descriptor g : CGAL::halfedges_around_target(target(c.h, m), m)) around.push_back(face(g, m));
-      } else {
-        around = {face(c.h, m), face(opposite(c.h, m), m)};
-      }
-      if(std::any_of(around.begin(), around.end(), [&](face_descriptor f) { return touched.count(f) > 0; })) continue;
-      for(face_descriptor f : around)
+      // the faces changed and their neighbours take one change at most; a candidate whose faces
+      // are untouched still has valid descriptors
+      if(std::any_of(c.faces.begin(), c.faces.end(), [&](face_descriptor f) { return touched.count(f) > 0; })) continue;
+      if(c.op == Operation::flip && !flip_is_safe(c.h, m, cos_refine)) continue;
+      for(face_descriptor f : c.faces) {
+        touched.insert(f);
         for(halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, m), m))
           if(!is_border(opposite(g, m), m)) touched.insert(face(opposite(g, m), m));
+      }
       if(c.op == Operation::flip) {
-        const vertex_descriptor a = target(next(c.h, m), m), b = target(next(opposite(c.h, m), m), m);
-        if(halfedge(a, b, m).second) continue;
         CGAL::Euler::flip_edge(c.h, m);
         flipped.push_back(c.h);
         continue;
@@ -935,7 +956,9 @@ private:
     }
     for(const Removed& r : removed) {
       if(is_cut(face(r.h, m))) {
-        put(vpm, target(CGAL::Euler::add_center_vertex(r.h, m), m), r.at);
+        const vertex_descriptor v = target(CGAL::Euler::add_center_vertex(r.h, m), m);   // a new descriptor
+        put(vpm, v, r.at);
+        new_vertex(v, false);
         ++stats.refused_moves;
       } else {
         ++changed;
