@@ -710,6 +710,35 @@ private:
     return fd == 0 ? 0 : fd == 2 ? 1 : 2;
   }
 
+  // splits the edge of h at `at` and its (one or two) triangles: the new vertex, of degree 3 or 4
+  template <class Mesh>
+  static typename boost::graph_traits<Mesh>::vertex_descriptor
+  insert_vertex_on_edge(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Point_3& at, Mesh& m)
+  {
+    const auto g0 = opposite(h, m);
+    const auto hnew = CGAL::Euler::split_edge(h, m);   // hnew points to the new vertex, followed by h
+    const auto v = target(hnew, m);
+    put(get(CGAL::vertex_point, m), v, at);
+    for(auto g : {hnew, g0})
+      if(!is_border(g, m)) CGAL::Euler::split_face(g, next(next(g, m), m), m);
+    return v;
+  }
+
+  // the inverse of insert_vertex_on_edge for an interior edge (a, b): v's four triangles become two
+  template <class Mesh>
+  static void remove_vertex_on_edge(typename boost::graph_traits<Mesh>::vertex_descriptor v,
+                                    typename boost::graph_traits<Mesh>::vertex_descriptor a,
+                                    typename boost::graph_traits<Mesh>::vertex_descriptor b, Mesh& m)
+  {
+    const auto g = CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
+    auto to_a = boost::graph_traits<Mesh>::null_halfedge(), to_b = boost::graph_traits<Mesh>::null_halfedge();
+    for(auto x : CGAL::halfedges_around_face(g, m)) {
+      if(target(x, m) == a) to_a = x;
+      if(target(x, m) == b) to_b = x;
+    }
+    CGAL::Euler::split_face(to_a, to_b, m);
+  }
+
   template <class Mesh, class IsFeatureEdge, class NewVertex>
   std::size_t split_pass(Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Relaxation_settings& s,
                          Relaxation_statistics& stats) const
@@ -749,11 +778,7 @@ private:
         if(cos_between(normal(P, mid, R), n) < 0.8 || cos_between(normal(mid, Q, R), n) < 0.8) folds = true;
       }
       if(folds) continue;
-      const halfedge_descriptor hnew = CGAL::Euler::split_edge(h.first, m);   // hnew points to the new vertex
-      const vertex_descriptor v = target(hnew, m);
-      put(vpm, v, mid);
-      for(halfedge_descriptor g : {hnew, opposite(h.first, m)})
-        if(!is_border(g, m)) CGAL::Euler::split_face(g, next(next(g, m), m), m);
+      const vertex_descriptor v = insert_vertex_on_edge(h.first, mid, m);
       new_vertex(v, on_feature);
       ++done;
     }
@@ -934,13 +959,7 @@ private:
         continue;
       }
       const vertex_descriptor a = source(c.h, m), b = target(c.h, m);
-      const halfedge_descriptor g0 = opposite(c.h, m);
-      const halfedge_descriptor hnew = CGAL::Euler::split_edge(c.h, m);   // hnew points to the new vertex
-      const vertex_descriptor v = target(hnew, m);
-      put(vpm, v, c.at);
-      CGAL::Euler::split_face(hnew, next(next(hnew, m), m), m);
-      CGAL::Euler::split_face(g0, next(next(g0, m), m), m);
-      mine.push_back({v, c.on_feature, a, b});
+      mine.push_back({insert_vertex_on_edge(c.h, c.at, m), c.on_feature, a, b});
     }
     // a change that makes the mesh cut itself is taken back: an inserted vertex's four triangles
     // become the two old ones, a flip is flipped back, a removed vertex comes back
@@ -972,13 +991,7 @@ private:
     auto by_vertex = [](const Inserted& x, const Inserted& y) { return x.v < y.v; };
     std::sort(undo.begin(), undo.end(), by_vertex);
     for(const Inserted& u : undo) {
-      const halfedge_descriptor g = CGAL::Euler::remove_center_vertex(halfedge(u.v, m), m);
-      halfedge_descriptor to_a = GT::null_halfedge(), to_b = GT::null_halfedge();
-      for(halfedge_descriptor x : CGAL::halfedges_around_face(g, m)) {
-        if(target(x, m) == u.a) to_a = x;
-        if(target(x, m) == u.b) to_b = x;
-      }
-      CGAL::Euler::split_face(to_a, to_b, m);
+      remove_vertex_on_edge(u.v, u.a, u.b, m);
       ++stats.refused_moves;
     }
     std::size_t done = 0;
