@@ -267,19 +267,10 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   CGAL::Polygon_mesh_processing::detect_sharp_edges(ref, sharp_angle, sharp);
   auto is_cut = [&](typename RGT::halfedge_descriptor h) { return is_border_edge(h, ref) || get(sharp, edge(h, ref)); };
 
-  // angle defects (degrees; 0 on borders), and the cone angle at `scale` of the tips
+  // angle defects (degrees; 0 on borders and isolated vertices: filled with the sectors below),
+  // and the cone angle at `scale` of the tips
   auto defect = get(CGAL::dynamic_vertex_property_t<double>(), ref);
-  for(ref_vertex v : vertices(ref)) {
-    double sum = 0;
-    if(halfedge(v, ref) != RGT::null_halfedge() && !is_border(v, ref)) {
-      const V3 o = to_v3(get(rvpm, v));
-      for(auto h : CGAL::halfedges_around_target(halfedge(v, ref), ref))
-        sum += angle(sub(to_v3(get(rvpm, source(h, ref))), o), sub(to_v3(get(rvpm, target(next(h, ref), ref))), o));
-      put(defect, v, 360 - sum);
-    } else {
-      put(defect, v, 0.0);
-    }
-  }
+  for(ref_vertex v : vertices(ref)) put(defect, v, 0.0);
   auto visited = get(CGAL::dynamic_vertex_property_t<std::size_t>(), ref);
   for(ref_vertex v : vertices(ref)) put(visited, v, std::size_t(0));
   std::size_t visit = 0;
@@ -323,14 +314,16 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
     const double least = cuts >= 2 ? 1 : 3;
     std::vector<std::pair<ref_face, double>> sectors;
     const std::size_t start = cuts == 0 ? 0 : first_cut + 1;
-    double sum = 0;
+    double sum = 0, total = 0;
     std::vector<ref_face> members;
     bool small = false;
     for(std::size_t k = 0; k < n; ++k) {
       const auto h = ring[(start + k) % n];
       if(!is_border(h, ref)) {
         const V3 o = to_v3(get(rvpm, v));
-        sum += angle(sub(to_v3(get(rvpm, source(h, ref))), o), sub(to_v3(get(rvpm, target(next(h, ref), ref))), o));
+        const double a = angle(sub(to_v3(get(rvpm, source(h, ref))), o), sub(to_v3(get(rvpm, target(next(h, ref), ref))), o));
+        sum += a;
+        total += a;
         members.push_back(face(h, ref));
       }
       if(k + 1 == n || (cuts >= 2 && is_cut(next(h, ref)))) {
@@ -340,6 +333,7 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
         members.clear();
       }
     }
+    if(!is_border(v, ref)) put(defect, v, 360 - total);
     if(small) corners[to_v3(get(rvpm, v))] = std::move(sectors);
     else if(cuts < 2 && get(defect, v) > 0) tips[to_v3(get(rvpm, v))] = v;
   }
@@ -447,7 +441,7 @@ Quality_report quality_report(const TriangleMesh& tm,
   `min_angle_away_from_sharp_corners` (theta_min without the angles at corners of the reference
   whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees -- the input's
   own, or the cone angle at the scale of the tip's edges in tm, 360 degrees minus the reference's
-  angle defects within 0.9 of it, at a tip that is the pointiest there --, wedges between sharp edges
+  angle defects within 0.9 times that scale, at a tip that is the pointiest there --, wedges between sharp edges
   under 30 degrees; there no mesh keeping the corner reaches 30).
 */
 template <class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
