@@ -36,6 +36,7 @@
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -275,9 +276,16 @@ private:
     const Vector_3 u = a - o, v = b - o;
     return std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(u, v).squared_length())), CGAL::to_double(u * v));
   }
+  // the smallest angle lies opposite the shortest edge: one atan2 instead of three (the relaxer's
+  // angle searches spend most of their time here)
   static double min_angle(const Point_3& a, const Point_3& b, const Point_3& c)
   {
-    return std::min({angle(b, a, c), angle(a, b, c), angle(a, c, b)});
+    const double ab = CGAL::to_double(CGAL::squared_distance(a, b));
+    const double bc = CGAL::to_double(CGAL::squared_distance(b, c));
+    const double ca = CGAL::to_double(CGAL::squared_distance(c, a));
+    if(bc <= ab && bc <= ca) return angle(b, a, c);
+    if(ca <= ab) return angle(a, b, c);
+    return angle(a, c, b);
   }
   static Vector_3 normal(const Point_3& a, const Point_3& b, const Point_3& c) { return CGAL::cross_product(b - a, c - a); }
   static double cos_between(const Vector_3& a, const Vector_3& b)
@@ -506,12 +514,20 @@ private:
   void valence_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats) const
   {
     const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
+    // the ideal valences, computed once per vertex and again only after a flip at the vertex
+    auto cache = get(CGAL::dynamic_vertex_property_t<double>(), m);
+    for(auto v : vertices(m)) put(cache, v, -1.0);
+    auto ideal = [&](typename boost::graph_traits<Mesh>::vertex_descriptor v) {
+      double o = get(cache, v);
+      if(o < 0) { o = ideal_valence(v, m); put(cache, v, o); }
+      return o;
+    };
     for(auto e : edges(m)) {
       if(is_feature(e) || is_border(e, m)) continue;
       auto h = halfedge(e, m);
       const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
       const double dp = double(degree(p, m)), dq = double(degree(q, m)), dr = double(degree(r, m)), dt = double(degree(t, m));
-      const double op = ideal_valence(p, m), oq = ideal_valence(q, m), orr = ideal_valence(r, m), ot = ideal_valence(t, m);
+      const double op = ideal(p), oq = ideal(q), orr = ideal(r), ot = ideal(t);
       auto sq = [](double x) { return x * x; };
       const double before = sq(dp - op) + sq(dq - oq) + sq(dr - orr) + sq(dt - ot);
       const double after = sq(dp - 1 - op) + sq(dq - 1 - oq) + sq(dr + 1 - orr) + sq(dt + 1 - ot);
@@ -522,6 +538,7 @@ private:
       if(new_min < s.valence_flip_min_angle_ratio * old_min) continue;
       if(!flip_is_safe(h, m, cos_max)) continue;
       CGAL::Euler::flip_edge(h, m);
+      for(auto x : {p, q, r, t}) put(cache, x, -1.0);
       ++stats.valence_flips;
     }
   }
@@ -539,11 +556,60 @@ private:
     return pairs;
   }
 
-  // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs)
-  template <class Mesh, class Pairs, class F>
-  void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, F f) const
+  // the intersecting face pairs of m that involve a face of `changed` or a face whose box meets
+  // the box of one (sorted as above): all the pairs that can differ from an earlier check when
+  // only the faces of `changed` moved or are new. A box search of the changed faces against all
+  // faces, then CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round
+  // was a tenth of the remesh's time).
+  template <class Mesh, class FaceRange>
+  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
+  intersecting_pairs_near(const Mesh& m, const FaceRange& changed) const
   {
-    for(const auto& fp : intersecting_pairs(m)) {
+    typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+    typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
+    std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+    auto vpm = get(CGAL::vertex_point, m);
+    auto box_of = [&](face_descriptor f) {
+      const auto h = halfedge(f, m);
+      return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
+    };
+    std::vector<Box> mine, all;
+    for(face_descriptor f : changed) mine.push_back(box_of(f));
+    if(mine.empty()) return pairs;
+    all.reserve(num_faces(m));
+    for(face_descriptor f : faces(m)) all.push_back(box_of(f));
+    std::vector<face_descriptor> near;
+    for(face_descriptor f : changed) near.push_back(f);
+    CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
+                             [&](const Box& a, const Box& b) { if(a.info() != b.info()) near.push_back(b.info()); });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    CGAL::Polygon_mesh_processing::self_intersections(near, m, std::back_inserter(pairs),
+                                                      CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+    for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  }
+
+  // the faces around the vertices of a range, sorted, each once
+  template <class Mesh, class VertexRange>
+  static std::vector<typename boost::graph_traits<Mesh>::face_descriptor> faces_around(const Mesh& m, const VertexRange& vs)
+  {
+    std::vector<typename boost::graph_traits<Mesh>::face_descriptor> out;
+    for(auto v : vs)
+      for(auto h : CGAL::halfedges_around_target(halfedge(v, m), m))
+        if(!is_border(h, m)) out.push_back(face(h, m));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs),
+  // where only the faces of `changed` moved or are new since `before` was taken
+  template <class Mesh, class Pairs, class FaceRange, class F>
+  void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, const FaceRange& changed, F f) const
+  {
+    for(const auto& fp : intersecting_pairs_near(m, changed)) {
       if(std::binary_search(before.begin(), before.end(), fp)) continue;
       for(auto face : {fp.first, fp.second})
         for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
@@ -686,9 +752,12 @@ private:
     // that intersect anew go back, until no new intersection is left
     if(moved > 0) {
       std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::vector<vertex_descriptor> movers;
+      for(const auto& x : from) movers.push_back(x.first);
+      const auto changed = faces_around(m, movers);
       for(int round = 0; round < 8; ++round) {
         std::size_t back = 0;
-        for_vertices_of_new_intersections(m, before, [&](vertex_descriptor x) {
+        for_vertices_of_new_intersections(m, before, changed, [&](vertex_descriptor x) {
           auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
           if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
         });
@@ -964,7 +1033,15 @@ private:
     // a change that makes the mesh cut itself is taken back: an inserted vertex's four triangles
     // become the two old ones, a flip is flipped back, a removed vertex comes back
     std::vector<face_descriptor> cut;   // the faces of the new intersections
-    for(const auto& fp : intersecting_pairs(m))
+    std::vector<face_descriptor> new_faces;   // the faces that are new or moved
+    for(const Inserted& x : mine)
+      for(halfedge_descriptor g : CGAL::halfedges_around_target(x.v, m)) if(!is_border(g, m)) new_faces.push_back(face(g, m));
+    for(halfedge_descriptor h : flipped)
+      for(halfedge_descriptor g : {h, opposite(h, m)}) if(!is_border(g, m)) new_faces.push_back(face(g, m));
+    for(const Removed& r : removed) new_faces.push_back(face(r.h, m));
+    std::sort(new_faces.begin(), new_faces.end());
+    new_faces.erase(std::unique(new_faces.begin(), new_faces.end()), new_faces.end());
+    for(const auto& fp : intersecting_pairs_near(m, new_faces))
       if(!std::binary_search(before.begin(), before.end(), fp)) { cut.push_back(fp.first); cut.push_back(fp.second); }
     std::sort(cut.begin(), cut.end());
     auto is_cut = [&](face_descriptor f) { return std::binary_search(cut.begin(), cut.end(), f); };
@@ -1047,7 +1124,7 @@ private:
     // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
     std::sort(mine.begin(), mine.end());
     std::vector<vertex_descriptor> undo;
-    for_vertices_of_new_intersections(m, before, [&](vertex_descriptor x) {
+    for_vertices_of_new_intersections(m, before, faces_around(m, mine), [&](vertex_descriptor x) {
       if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
     });
     std::sort(undo.begin(), undo.end());
