@@ -675,7 +675,9 @@ private:
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
     std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
     if(!todo.empty()) {
-      before = intersecting_pairs(m);
+      // (only the faces around `todo` can move: around a few slivers, their neighbourhood is
+      // enough; the smoothing moves every vertex)
+      before = smoothing ? intersecting_pairs(m) : intersecting_pairs_near(m, faces_around(m, todo));
       // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
       if(before.size() > num_faces(m)) return 0;
     }
