@@ -10,6 +10,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Polyhedron_items_with_id_3.h>
 #include <CGAL/Surface_mesh.h>
@@ -180,6 +181,44 @@ analytic::Soup merged(const std::vector<analytic::Soup>& parts, const std::vecto
   return s;
 }
 } // namespace
+
+TEST_CASE("the relaxer's local self-intersection check finds what a whole-mesh check finds", "[remesh][relaxer]")
+{
+  // two overlapping spheres in one mesh: crossings there already, away from the vertex that moves
+  Mesh m = merged({analytic::sphere(30, 15), analytic::sphere(30, 15)}, {0, 1.5}).to_mesh<Mesh>();
+  typedef Mesh::Face_index F;
+  auto whole = [&] {
+    std::vector<std::pair<F, F>> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+    for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  };
+  const auto before = whole();
+  REQUIRE(!before.empty());
+  // the first sphere's vertex farthest from the second, pushed through its own sphere
+  Mesh::Vertex_index v = *vertices(m).begin();
+  for(auto w : vertices(m)) if(m.point(w).x() < m.point(v).x()) v = w;
+  const std::vector<Mesh::Vertex_index> moved{v};
+  const auto changed = PR::internal::faces_around(m, moved);
+  CHECK(changed.size() == degree(v, m));
+  CHECK(PR::internal::intersecting_pairs_near(m, changed).empty());   // nothing near it crosses yet
+  m.point(v) = Point(0.8, 0.05, 0.02);
+  const auto after = whole();
+  const auto near = PR::internal::intersecting_pairs_near(m, changed);
+  auto involves_changed = [&](const std::pair<F, F>& fp) {
+    return std::binary_search(changed.begin(), changed.end(), fp.first) || std::binary_search(changed.begin(), changed.end(), fp.second);
+  };
+  std::size_t new_pairs = 0;
+  for(const auto& fp : after) {
+    if(std::binary_search(before.begin(), before.end(), fp)) continue;
+    ++new_pairs;
+    CHECK(involves_changed(fp));                                      // only the moved faces cross anew
+    CHECK(std::binary_search(near.begin(), near.end(), fp));          // and the local check finds each
+  }
+  CHECK(new_pairs > 0);
+  for(const auto& fp : near) CHECK(std::binary_search(after.begin(), after.end(), fp));   // nothing it invents
+}
 
 TEST_CASE("remeshing does not depend on the size of the coordinates (1e-6 to 1e6)", "[remesh][robustness]")
 {

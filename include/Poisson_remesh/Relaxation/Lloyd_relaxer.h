@@ -127,6 +127,58 @@ struct Relaxation_statistics
   std::size_t refinement_flips = 0, refinement_removals = 0;   ///< the other changes of the refinement
 };
 
+namespace internal {
+
+// the intersecting face pairs of m that involve a face of `changed` or a face whose box meets
+// the box of one, each pair (smaller, larger), sorted: all the pairs that can differ from an earlier check when
+// only the faces of `changed` moved or are new. A box search of the changed faces against all
+// faces, then CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round
+// was a tenth of the remesh's time).
+template <class Mesh, class FaceRange>
+std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
+intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
+{
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
+  std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+  auto vpm = get(CGAL::vertex_point, m);
+  auto box_of = [&](face_descriptor f) {
+    const auto h = halfedge(f, m);
+    return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
+  };
+  std::vector<Box> mine, all;
+  for(face_descriptor f : changed) mine.push_back(box_of(f));
+  if(mine.empty()) return pairs;
+  all.reserve(num_faces(m));
+  for(face_descriptor f : faces(m)) all.push_back(box_of(f));
+  std::vector<face_descriptor> near;
+  for(face_descriptor f : changed) near.push_back(f);
+  CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
+                           [&](const Box& a, const Box& b) { if(a.info() != b.info()) near.push_back(b.info()); });
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  CGAL::Polygon_mesh_processing::self_intersections(near, m, std::back_inserter(pairs),
+                                                    CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+  for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// the faces around the vertices of a range, sorted, each once
+template <class Mesh, class VertexRange>
+std::vector<typename boost::graph_traits<Mesh>::face_descriptor> faces_around(const Mesh& m, const VertexRange& vs)
+{
+  std::vector<typename boost::graph_traits<Mesh>::face_descriptor> out;
+  for(auto v : vs)
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, m), m))
+      if(!is_border(h, m)) out.push_back(face(h, m));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+} // namespace internal
+
 template <class InputMesh, class GeomTraits>
 class Lloyd_relaxer
 {
@@ -556,60 +608,12 @@ private:
     return pairs;
   }
 
-  // the intersecting face pairs of m that involve a face of `changed` or a face whose box meets
-  // the box of one (sorted as above): all the pairs that can differ from an earlier check when
-  // only the faces of `changed` moved or are new. A box search of the changed faces against all
-  // faces, then CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round
-  // was a tenth of the remesh's time).
-  template <class Mesh, class FaceRange>
-  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
-  intersecting_pairs_near(const Mesh& m, const FaceRange& changed) const
-  {
-    typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-    typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
-    std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-    auto vpm = get(CGAL::vertex_point, m);
-    auto box_of = [&](face_descriptor f) {
-      const auto h = halfedge(f, m);
-      return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
-    };
-    std::vector<Box> mine, all;
-    for(face_descriptor f : changed) mine.push_back(box_of(f));
-    if(mine.empty()) return pairs;
-    all.reserve(num_faces(m));
-    for(face_descriptor f : faces(m)) all.push_back(box_of(f));
-    std::vector<face_descriptor> near;
-    for(face_descriptor f : changed) near.push_back(f);
-    CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
-                             [&](const Box& a, const Box& b) { if(a.info() != b.info()) near.push_back(b.info()); });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    CGAL::Polygon_mesh_processing::self_intersections(near, m, std::back_inserter(pairs),
-                                                      CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
-    for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
-  }
-
-  // the faces around the vertices of a range, sorted, each once
-  template <class Mesh, class VertexRange>
-  static std::vector<typename boost::graph_traits<Mesh>::face_descriptor> faces_around(const Mesh& m, const VertexRange& vs)
-  {
-    std::vector<typename boost::graph_traits<Mesh>::face_descriptor> out;
-    for(auto v : vs)
-      for(auto h : CGAL::halfedges_around_target(halfedge(v, m), m))
-        if(!is_border(h, m)) out.push_back(face(h, m));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-
   // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs),
   // where only the faces of `changed` moved or are new since `before` was taken
   template <class Mesh, class Pairs, class FaceRange, class F>
   void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, const FaceRange& changed, F f) const
   {
-    for(const auto& fp : intersecting_pairs_near(m, changed)) {
+    for(const auto& fp : internal::intersecting_pairs_near(m, changed)) {
       if(std::binary_search(before.begin(), before.end(), fp)) continue;
       for(auto face : {fp.first, fp.second})
         for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
@@ -677,7 +681,7 @@ private:
     if(!todo.empty()) {
       // (only the faces around `todo` can move: around a few slivers, their neighbourhood is
       // enough; the smoothing moves every vertex)
-      before = smoothing ? intersecting_pairs(m) : intersecting_pairs_near(m, faces_around(m, todo));
+      before = smoothing ? intersecting_pairs(m) : internal::intersecting_pairs_near(m, internal::faces_around(m, todo));
       // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
       if(before.size() > num_faces(m)) return 0;
     }
@@ -756,7 +760,7 @@ private:
       std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       std::vector<vertex_descriptor> movers;
       for(const auto& x : from) movers.push_back(x.first);
-      const auto changed = faces_around(m, movers);
+      const auto changed = internal::faces_around(m, movers);
       for(int round = 0; round < 8; ++round) {
         std::size_t back = 0;
         for_vertices_of_new_intersections(m, before, changed, [&](vertex_descriptor x) {
@@ -1043,7 +1047,7 @@ private:
     for(const Removed& r : removed) new_faces.push_back(face(r.h, m));
     std::sort(new_faces.begin(), new_faces.end());
     new_faces.erase(std::unique(new_faces.begin(), new_faces.end()), new_faces.end());
-    for(const auto& fp : intersecting_pairs_near(m, new_faces))
+    for(const auto& fp : internal::intersecting_pairs_near(m, new_faces))
       if(!std::binary_search(before.begin(), before.end(), fp)) { cut.push_back(fp.first); cut.push_back(fp.second); }
     std::sort(cut.begin(), cut.end());
     auto is_cut = [&](face_descriptor f) { return std::binary_search(cut.begin(), cut.end(), f); };
@@ -1126,7 +1130,7 @@ private:
     // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
     std::sort(mine.begin(), mine.end());
     std::vector<vertex_descriptor> undo;
-    for_vertices_of_new_intersections(m, before, faces_around(m, mine), [&](vertex_descriptor x) {
+    for_vertices_of_new_intersections(m, before, internal::faces_around(m, mine), [&](vertex_descriptor x) {
       if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
     });
     std::sort(undo.begin(), undo.end());
