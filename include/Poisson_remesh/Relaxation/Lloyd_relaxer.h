@@ -45,6 +45,7 @@
 #include <array>
 #include <set>
 #include <cmath>
+#include <iterator>
 #include <type_traits>
 #include <vector>
 
@@ -129,39 +130,55 @@ struct Relaxation_statistics
 
 namespace internal {
 
-// the intersecting face pairs of m that involve a face of `changed` or a face whose box meets
-// the box of one, each pair (smaller, larger), sorted: all the pairs that can differ from an earlier check when
-// only the faces of `changed` moved or are new. A box search of the changed faces against all
-// faces, then CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round
-// was a tenth of the remesh's time).
+template <class Mesh>
+using Face_pairs = std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>;
+
+// the intersecting face pairs among the faces of `range` (all of m's by default), each (smaller,
+// larger), sorted; the search stops past twice the face count (a mesh that cuts itself
+// everywhere: folded input)
 template <class Mesh, class FaceRange>
-std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
-intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
+Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
+{
+  Face_pairs<Mesh> pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs),
+                                                    CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+  for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+template <class Mesh>
+Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m, faces(m)); }
+
+// the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
+// meets the box of one: all the pairs that can differ from an earlier check when only the faces
+// of `changed` moved or are new. A box search of the changed faces against all faces, then
+// CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round was a tenth of
+// the remesh's time); when most faces changed, the whole mesh's pairs (a superset: the box
+// search would only repeat self_intersections' own).
+template <class Mesh, class FaceRange>
+Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
-  std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
   auto vpm = get(CGAL::vertex_point, m);
   auto box_of = [&](face_descriptor f) {
     const auto h = halfedge(f, m);
     return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
   };
+  const auto n = std::size_t(std::distance(std::begin(changed), std::end(changed)));
+  if(n == 0) return {};
+  if(2 * n > num_faces(m)) return intersecting_pairs(m);
   std::vector<Box> mine, all;
   for(face_descriptor f : changed) mine.push_back(box_of(f));
-  if(mine.empty()) return pairs;
   all.reserve(num_faces(m));
   for(face_descriptor f : faces(m)) all.push_back(box_of(f));
+  // (each changed face meets its own box in `all`, so it is in `near` too)
   std::vector<face_descriptor> near;
-  for(face_descriptor f : changed) near.push_back(f);
   CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
-                           [&](const Box& a, const Box& b) { if(a.info() != b.info()) near.push_back(b.info()); });
+                           [&](const Box&, const Box& b) { near.push_back(b.info()); });
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
-  CGAL::Polygon_mesh_processing::self_intersections(near, m, std::back_inserter(pairs),
-                                                    CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
-  for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return intersecting_pairs(m, near);
 }
 
 // the faces around the vertices of a range, sorted, each once
@@ -595,18 +612,6 @@ private:
     }
   }
 
-  // the intersecting face pairs of m, each (smaller, larger), sorted; the search stops past twice
-  // the face count (a mesh that cuts itself everywhere: folded input)
-  template <class Mesh>
-  std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
-  intersecting_pairs(const Mesh& m) const
-  {
-    std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>> pairs;
-    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs), CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
-    for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
-  }
 
   // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs),
   // where only the faces of `changed` moved or are new since `before` was taken
@@ -681,7 +686,7 @@ private:
     if(!todo.empty()) {
       // (only the faces around `todo` can move: around a few slivers, their neighbourhood is
       // enough; the smoothing moves every vertex)
-      before = smoothing ? intersecting_pairs(m) : internal::intersecting_pairs_near(m, internal::faces_around(m, todo));
+      before = smoothing ? internal::intersecting_pairs(m) : internal::intersecting_pairs_near(m, internal::faces_around(m, todo));
       // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
       if(before.size() > num_faces(m)) return 0;
     }
@@ -1001,7 +1006,7 @@ private:
       if(best.h != GT::null_halfedge()) candidates.push_back(best);
     }
     if(candidates.empty()) return 0;
-    const auto before = intersecting_pairs(m);
+    const auto before = internal::intersecting_pairs(m);
     if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) { return x.gain > y.gain; });
     std::set<face_descriptor> touched;
@@ -1039,9 +1044,9 @@ private:
     // a change that makes the mesh cut itself is taken back: an inserted vertex's four triangles
     // become the two old ones, a flip is flipped back, a removed vertex comes back
     std::vector<face_descriptor> cut;   // the faces of the new intersections
-    std::vector<face_descriptor> new_faces;   // the faces that are new or moved
-    for(const Inserted& x : mine)
-      for(halfedge_descriptor g : CGAL::halfedges_around_target(x.v, m)) if(!is_border(g, m)) new_faces.push_back(face(g, m));
+    std::vector<vertex_descriptor> inserted;
+    for(const Inserted& x : mine) inserted.push_back(x.v);
+    std::vector<face_descriptor> new_faces = internal::faces_around(m, inserted);   // the faces that are new
     for(halfedge_descriptor h : flipped)
       for(halfedge_descriptor g : {h, opposite(h, m)}) if(!is_border(g, m)) new_faces.push_back(face(g, m));
     for(const Removed& r : removed) new_faces.push_back(face(r.h, m));
@@ -1108,7 +1113,7 @@ private:
     if(far.empty()) return 0;
     std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     typedef typename GT::vertex_descriptor vertex_descriptor;
-    const auto before = intersecting_pairs(m);   // intersections there already
+    const auto before = internal::intersecting_pairs(m);   // intersections there already
     if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
     std::set<face_descriptor> touched;
     std::vector<vertex_descriptor> mine;
