@@ -18,6 +18,7 @@
 #include <Poisson_remesh/poisson_disk_sample.h>
 
 #include <CGAL/Kernel_traits.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <chrono>
 #include <vector>
@@ -25,6 +26,13 @@
 namespace Poisson_remesh {
 
 /// What poisson_remesh() did, stage by stage.
+namespace internal {
+// the relaxer's collapses and removals leave removed elements in a Surface_mesh (its BGL
+// num_vertices() and friends count them, and its indices have holes); the output has none
+template <class Mesh> void collect_garbage(Mesh&) {}
+template <class P> void collect_garbage(CGAL::Surface_mesh<P>& m) { m.collect_garbage(); }
+} // namespace internal
+
 struct Poisson_remesh_result
 {
   Poisson_disk_sampling_result sampling;
@@ -36,7 +44,8 @@ struct Poisson_remesh_result
 };
 
 /*!
-  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first).
+  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first; a
+  `Surface_mesh` output has no removed elements left: its garbage is collected).
 
   Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
   `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
@@ -153,6 +162,7 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   } else {   // the user's model of the Relaxer concept
     result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
   }
+  internal::collect_garbage(output);
   result.seconds_relaxation = since(t);
   return result;
 }

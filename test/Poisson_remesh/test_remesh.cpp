@@ -53,6 +53,10 @@ TEST_CASE("remeshed meshes keep the input's topology and lie on it", "[remesh]")
               << b.number_of_self_intersecting_face_pairs << ", " << run.seconds() << " s\n";
     CHECK(CGAL::is_valid_polygon_mesh(out));
     CHECK(CGAL::is_closed(out));
+    // no removed elements are left behind (the relaxer's collapses): the BGL counts are the mesh's
+    CHECK(!out.has_garbage());
+    CHECK(num_vertices(out) == b.number_of_vertices);
+    CHECK(long(num_vertices(out)) - long(num_edges(out)) + long(num_faces(out)) == b.euler_characteristic);
     CHECK(b.euler_characteristic == a.euler_characteristic);
     CHECK(b.number_of_components == a.number_of_components);
     CHECK(run.number_of_leftover_input_vertices <= 2);
