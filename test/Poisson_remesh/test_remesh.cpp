@@ -224,6 +224,52 @@ TEST_CASE("the relaxer's local self-intersection check finds what a whole-mesh c
   for(const auto& fp : near) CHECK(std::binary_search(after.begin(), after.end(), fp));   // nothing it invents
 }
 
+TEST_CASE("the relaxer's untangling removes a crossing made by a vertex pushed through another sheet", "[remesh][relaxer]")
+{
+  // two overlapping spheres (crossings in the input itself); a vertex of the first pushed into
+  // the second crosses it anew: the untangling moves it back (toward its neighbours, on the
+  // input); of the input's own crossings none is added
+  const Mesh in = merged({analytic::sphere(30, 15), analytic::sphere(30, 15)}, {0, 1.5}).to_mesh<Mesh>();
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  Mesh::Vertex_index v = *vertices(in).begin();
+  for(auto w : vertices(in)) if(in.point(w).x() < in.point(v).x()) v = w;
+  auto crossings = [](const Mesh& m) {
+    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+    return pairs.size();
+  };
+  const std::size_t own = crossings(in);
+  REQUIRE(own > 0);
+  PR::Relaxation_settings s;   // everything off but the last Lloyd pass, its Delaunay flips and the untangling
+  s.iterations = 0;
+  s.collapse_slivers = false;
+  s.max_deviation = 0;
+  s.long_edge_ratio = 0;
+  s.smoothing_rounds = s.regularity_rounds = s.angle_rounds = s.refinement_rounds = 0;
+  s.delaunay_flips = false;
+  for(unsigned int rounds : {0u, 3u}) {
+    INFO("untangle rounds " << rounds);
+    Mesh m = in;
+    m.point(v) = Point(0.8, 0.05, 0.02);
+    REQUIRE(crossings(m) > own);
+    s.untangle_rounds = rounds;
+    const auto stats = relaxer.relax(m, [](Mesh::Edge_index) { return false; }, [&](Mesh::Vertex_index x) { return x != v; }, s);
+    if(rounds == 0) {
+      CHECK(crossings(m) > own);
+    } else {
+      CHECK(crossings(m) <= own);   // (its flips may mend some of the input's too)
+      std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
+      const auto mine = PR::internal::faces_around(m, std::vector<Mesh::Vertex_index>{v});
+      for(const auto& fp : pairs)   // none left at the vertex pushed through
+        CHECK(!(std::binary_search(mine.begin(), mine.end(), fp.first) || std::binary_search(mine.begin(), mine.end(), fp.second)));
+      CHECK(stats.untangle_changes > 0);
+      CHECK(vertices_off_input(m, in) < 1e-9);
+    }
+  }
+}
+
 TEST_CASE("remeshing does not depend on the size of the coordinates (1e-6 to 1e6)", "[remesh][robustness]")
 {
   Mesh in;

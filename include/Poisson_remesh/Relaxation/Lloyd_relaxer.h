@@ -21,11 +21,12 @@
 // the paper, slivers whose short edge no move can lengthen (pinned by corners or feature samples)
 // lose that edge by a guarded collapse onto its more constrained end (two corners too close are
 // merged), input vertices far from the mesh are inserted and pinned (fidelity insertions), and a
-// few rounds follow; at the very end the vertices of the triangles still under sliver_angle move
+// few rounds follow; at the very end the vertices of the triangles still under optimized_angle move
 // to raise their smallest angle (angle optimization), after a smoothing of all vertices and
 // regularity flips; last, the triangles still sharper than that get a flip, a vertex removal or
-// a vertex insertion beside them (refinement). Moves and insertions that make the mesh cut
-// itself anew are taken back.
+// a vertex insertion beside them (refinement), and the crossings left from the tessellation and
+// the Lloyd passes get vertex moves and flips that leave fewer of them (untangling). Moves and
+// insertions that make the mesh cut itself anew are taken back.
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -118,6 +119,13 @@ struct Relaxation_settings
   /// rounds stop when a round flips nothing (two or three rounds on the benchmark models).
   unsigned int regularity_rounds = 4;
   double regularity_min_angle = 30;
+  /// (beyond the paper) rounds of untangling at the very end: the crossings left (the
+  /// tessellation and the Lloyd passes do not check for them; femur's bumps) lose a free vertex
+  /// of a crossing face moved onto the input below its neighbours' centroid (or halfway there), or
+  /// an edge of a crossing face flipped, when fewer crossing pairs involve the faces it changes and
+  /// their smallest angle stays over `untangle_min_angle` (or what it was); 0 disables
+  unsigned int untangle_rounds = 3;
+  double untangle_min_angle = 30;
   /// a regularity flip that leaves as many irregular vertices (it moves one: a 5-7 pair glides) is
   /// made when a flip of an edge at one of its four vertices then makes fewer; both flips under
   /// the same guards. Irregular vertices 1.5-2.5 points fewer on the benchmark models.
@@ -138,6 +146,7 @@ struct Relaxation_statistics
   std::size_t fidelity_insertions = 0;   ///< input vertices inserted where the mesh cut across the input
   std::size_t refinement_insertions = 0;   ///< vertices inserted beside triangles still sharper than sliver_angle
   std::size_t refinement_flips = 0, refinement_removals = 0;   ///< the other changes of the refinement
+  std::size_t untangle_changes = 0;   ///< moves and flips that left fewer crossing face pairs
 };
 
 namespace internal {
@@ -337,6 +346,8 @@ public:
           if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
         }
       }
+    for(unsigned int round = 0; round < s.untangle_rounds; ++round)
+      if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
     return stats;
   }
 
@@ -1193,6 +1204,127 @@ private:
         ++done;
       }
     stats.fidelity_insertions += done;
+    return done;
+  }
+
+  // see Relaxation_settings::untangle_rounds; returns the number of changes made
+  template <class Mesh, class IsFeatureEdge, class IsCorner>
+  std::size_t untangle_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, const Relaxation_settings& s,
+                            Relaxation_statistics& stats) const
+  {
+    typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+    typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+    auto pairs = internal::intersecting_pairs(m);
+    if(pairs.empty() || pairs.size() > num_faces(m)) return 0;
+    auto vpm = get(CGAL::vertex_point, m);
+    // the faces' boxes, kept up to date by `refresh` after each change (taken back or not); the
+    // crossing pairs that involve one of the faces of `fs` (sorted) are looked for among the
+    // faces whose boxes meet theirs (intersecting_pairs_near would box the whole mesh each time)
+    auto box = get(CGAL::dynamic_face_property_t<CGAL::Bbox_3>(), m);
+    auto box_of = [&](face_descriptor f) {
+      CGAL::Bbox_3 b;
+      for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, x).bbox();
+      return b;
+    };
+    for(face_descriptor f : faces(m)) put(box, f, box_of(f));
+    auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) put(box, f, box_of(f)); };
+    std::vector<face_descriptor> near;
+    auto crossings = [&](const std::vector<face_descriptor>& fs) {
+      refresh(fs);
+      near = fs;
+      for(face_descriptor g : faces(m))
+        for(face_descriptor f : fs)
+          if(g != f && CGAL::do_overlap(get(box, g), get(box, f))) { near.push_back(g); break; }
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      std::size_t n = 0;
+      for(const auto& fp : internal::intersecting_pairs(m, near))
+        if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+      return n;
+    };
+    const double floor = s.untangle_min_angle * CGAL_PI / 180;
+    std::size_t done = 0;
+    std::vector<vertex_descriptor> vs;
+    for(const auto& fp : pairs)
+      for(face_descriptor f : {fp.first, fp.second})
+        for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) vs.push_back(x);
+    std::sort(vs.begin(), vs.end());
+    vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+    // moves of the free vertices
+    for(vertex_descriptor v : vs) {
+      const int c_v = constraint(v, m, is_feature, is_fixed);   // 0 free, 1 on a curve, 2 fixed
+      if(c_v == 2 || (c_v == 0 && is_border(v, m))) continue;
+      const std::vector<face_descriptor> fs = internal::faces_around(m, std::array<vertex_descriptor, 1>{{v}});
+      const std::size_t before = crossings(fs);
+      if(before == 0) continue;
+      const Point_3 start = get(vpm, v);
+      const double old_min = smallest_angles_around(v, m, start).first;
+      double x = 0, y = 0, z = 0;
+      std::size_t n = 0;
+      for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) {
+        const Point_3& q = get(vpm, w);
+        x += CGAL::to_double(q.x()); y += CGAL::to_double(q.y()); z += CGAL::to_double(q.z());
+        ++n;
+      }
+      if(n == 0) continue;
+      const Point_3 c(x / double(n), y / double(n), z / double(n));
+      // toward the centroid, and a third of the way toward each neighbour: the one that leaves
+      // the fewest crossings
+      std::vector<Point_3> tries;
+      if(c_v == 0) tries = {c, CGAL::midpoint(start, c)};
+      for(auto g : CGAL::halfedges_around_target(v, m))   // (a vertex on a curve slides along it)
+        if(c_v == 0 || is_feature(edge(g, m)) || is_border(edge(g, m), m)) tries.push_back(start + (get(vpm, source(g, m)) - start) / 3.0);
+      std::size_t best = before;
+      Point_3 best_q = start;
+      for(const Point_3& t : tries) {
+        const Point_3 q = c_v == 0 ? project_on_surface(t, start) : project_on_features(t, start);
+        if(smallest_angles_around(v, m, q).first < std::min(old_min, floor)) continue;
+        put(vpm, v, q);
+        const std::size_t after = crossings(fs);
+        if(after < best) { best = after; best_q = q; }
+        put(vpm, v, start);
+        refresh(fs);
+        if(best == 0) break;
+      }
+      if(best < before) {
+        put(vpm, v, best_q);
+        refresh(fs);
+        ++done;
+        ++stats.untangle_changes;
+      }
+    }
+    // flips of the edges of the faces still crossing
+    pairs = internal::intersecting_pairs(m);
+    const double cos_max = std::cos(60 * CGAL_PI / 180);
+    std::vector<typename boost::graph_traits<Mesh>::edge_descriptor> es;
+    for(const auto& fp : pairs)
+      for(face_descriptor f : {fp.first, fp.second})
+        for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) es.push_back(edge(h, m));
+    std::sort(es.begin(), es.end());
+    es.erase(std::unique(es.begin(), es.end()), es.end());
+    for(auto e : es) {
+      if(is_feature(e) || is_border(e, m)) continue;
+      const auto h = halfedge(e, m);
+      const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+      if(degree(p, m) <= 3 || degree(q, m) <= 3 || r == t || halfedge(r, t, m).second) continue;
+      if(!flip_is_safe(h, m, cos_max)) continue;
+      std::vector<face_descriptor> fs = {face(h, m), face(opposite(h, m), m)};
+      std::sort(fs.begin(), fs.end());
+      const std::size_t before = crossings(fs);
+      if(before == 0) continue;
+      const Point_3 &P = get(vpm, p), &Q = get(vpm, q), &R = get(vpm, r), &T = get(vpm, t);
+      const double old_min = std::min(min_angle(P, Q, R), min_angle(Q, P, T));
+      if(std::min(min_angle(R, T, Q), min_angle(T, R, P)) < std::min(old_min, floor)) continue;
+      CGAL::Euler::flip_edge(h, m);
+      std::vector<face_descriptor> gs = {face(h, m), face(opposite(h, m), m)};
+      std::sort(gs.begin(), gs.end());
+      if(crossings(gs) < before) { ++done; ++stats.untangle_changes; }
+      else {
+        CGAL::Euler::flip_edge(h, m);
+        std::vector<face_descriptor> back = {face(h, m), face(opposite(h, m), m)};
+        refresh(back);
+      }
+    }
     return done;
   }
 
