@@ -128,7 +128,7 @@ struct Relaxation_settings
   double untangle_min_angle = 30;
   /// a regularity flip that leaves as many irregular vertices (it moves one: a 5-7 pair glides) is
   /// made when a flip of an edge at one of its four vertices then makes fewer; both flips under
-  /// the same guards. Irregular vertices 1.5-2.5 points fewer on the benchmark models.
+  /// the same guards. Irregular vertices 1.3-3.0 points fewer on the benchmark models.
   bool regularity_lookahead = true;
   /// after the regularity flips, a Delaunay flip that would make more irregular vertices is made
   /// only at a triangle sharper than `sliver_angle` whose smallest angle it raises (else the
