@@ -25,7 +25,6 @@
 
 namespace Poisson_remesh {
 
-/// What poisson_remesh() did, stage by stage.
 namespace internal {
 // the relaxer's collapses and removals leave removed elements in a Surface_mesh (its BGL
 // num_vertices() and friends count them, and its indices have holes); the output has none
@@ -33,6 +32,7 @@ template <class Mesh> void collect_garbage(Mesh&) {}
 template <class P> void collect_garbage(CGAL::Surface_mesh<P>& m) { m.collect_garbage(); }
 } // namespace internal
 
+/// What poisson_remesh() did, stage by stage.
 struct Poisson_remesh_result
 {
   Poisson_disk_sampling_result sampling;

@@ -1258,15 +1258,18 @@ private:
       const std::size_t before = crossings(fs);
       if(before == 0) continue;
       const Point_3 start = get(vpm, v);
-      const double old_min = smallest_angles_around(v, m, start).first;
-      double x = 0, y = 0, z = 0;
+      // (a triangle of zero area around v makes the angles -1: then no triangle may get worse than 0)
+      const double limit = std::min(std::max(smallest_angles_around(v, m, start).first, 0.0), floor);
+      double x = 0, y = 0, z = 0, mean = 0;
       std::size_t n = 0;
       for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) {
         const Point_3& q = get(vpm, w);
         x += CGAL::to_double(q.x()); y += CGAL::to_double(q.y()); z += CGAL::to_double(q.z());
+        mean += std::sqrt(CGAL::to_double(CGAL::squared_distance(q, start)));
         ++n;
       }
       if(n == 0) continue;
+      mean /= double(n);
       const Point_3 c(x / double(n), y / double(n), z / double(n));
       // toward the centroid, and a third of the way toward each neighbour: the one that leaves
       // the fewest crossings
@@ -1278,7 +1281,9 @@ private:
       Point_3 best_q = start;
       for(const Point_3& t : tries) {
         const Point_3 q = c_v == 0 ? project_on_surface(t, start) : project_on_features(t, start);
-        if(smallest_angles_around(v, m, q).first < std::min(old_min, floor)) continue;
+        if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+        const double new_min = smallest_angles_around(v, m, q).first;
+        if(new_min < 0 || new_min < limit) continue;
         put(vpm, v, q);
         const std::size_t after = crossings(fs);
         if(after < best) { best = after; best_q = q; }
