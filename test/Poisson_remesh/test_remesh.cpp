@@ -234,11 +234,12 @@ TEST_CASE("the relaxer's untangling removes a crossing made by a vertex pushed t
   PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
   Mesh::Vertex_index v = *vertices(in).begin();
   for(auto w : vertices(in)) if(in.point(w).x() < in.point(v).x()) v = w;
-  auto crossings = [](const Mesh& m) {
+  auto pairs_of = [](const Mesh& m) {
     std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
     CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
-    return pairs.size();
+    return pairs;
   };
+  auto crossings = [&](const Mesh& m) { return pairs_of(m).size(); };
   const std::size_t own = crossings(in);
   REQUIRE(own > 0);
   PR::Relaxation_settings s;   // everything off but the last Lloyd pass, its Delaunay flips and the untangling
@@ -259,10 +260,8 @@ TEST_CASE("the relaxer's untangling removes a crossing made by a vertex pushed t
       CHECK(crossings(m) > own);
     } else {
       CHECK(crossings(m) <= own);   // (its flips may mend some of the input's too)
-      std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
-      CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(pairs));
       const auto mine = PR::internal::faces_around(m, std::vector<Mesh::Vertex_index>{v});
-      for(const auto& fp : pairs)   // none left at the vertex pushed through
+      for(const auto& fp : pairs_of(m))   // none left at the vertex pushed through
         CHECK(!(std::binary_search(mine.begin(), mine.end(), fp.first) || std::binary_search(mine.begin(), mine.end(), fp.second)));
       CHECK(stats.untangle_changes > 0);
       CHECK(vertices_off_input(m, in) < 1e-9);

@@ -542,13 +542,40 @@ private:
     return cos_between(m1, avg) > cos_max && cos_between(m2, avg) > cos_max && cos_between(m1, m2) > cos_max;
   }
 
+  // how many more of its four vertices a flip of h makes irregular (valence not 6, not 4 on a
+  // border): negative when fewer
+  template <class Mesh>
+  static int irregular_change(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
+    const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+    return irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1)
+         - (irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0));
+  }
+  // the smallest angle of the two triangles of h, and of the two a flip of h would make
+  template <class Mesh>
+  static double min_angle_of_faces(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    const Point_3 &P = get(vpm, source(h, m)), &Q = get(vpm, target(h, m));
+    const Point_3 &R = get(vpm, target(next(h, m), m)), &T = get(vpm, target(next(opposite(h, m), m), m));
+    return std::min(min_angle(P, Q, R), min_angle(Q, P, T));
+  }
+  template <class Mesh>
+  static double min_angle_after_flip(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    const Point_3 &P = get(vpm, source(h, m)), &Q = get(vpm, target(h, m));
+    const Point_3 &R = get(vpm, target(next(h, m), m)), &T = get(vpm, target(next(opposite(h, m), m), m));
+    return std::min(min_angle(R, T, Q), min_angle(T, R, P));
+  }
+
   template <class Mesh, class IsFeatureEdge>
   void delaunay_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats,
                      bool keep_regularity = false) const
   {
     const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
     const double sliver = s.sliver_angle * CGAL_PI / 180;
-    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
     for(int round = 0; round < 4; ++round) {
       std::size_t flips = 0;
       for(auto e : edges(m)) {
@@ -557,15 +584,9 @@ private:
         const Point_3 &P = get(get(CGAL::vertex_point, m), source(h, m)), &Q = get(get(CGAL::vertex_point, m), target(h, m));
         const Point_3 &R = get(get(CGAL::vertex_point, m), target(next(h, m), m)), &S = get(get(CGAL::vertex_point, m), target(next(opposite(h, m), m), m));
         if(angle(P, R, Q) + angle(P, S, Q) <= CGAL_PI + 1e-9) continue;
-        if(keep_regularity) {
-          const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
-          const int before = irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0);
-          const int after = irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1);
-          if(after > before) {
-            const double old_min = std::min(min_angle(P, Q, R), min_angle(Q, P, S));
-            const double new_min = std::min(min_angle(R, S, Q), min_angle(S, R, P));
-            if(old_min >= sliver || new_min <= old_min) continue;
-          }
+        if(keep_regularity && irregular_change(h, m) > 0) {
+          const double old_min = min_angle_of_faces(h, m);
+          if(old_min >= sliver || min_angle_after_flip(h, m) <= old_min) continue;
         }
         if(!flip_is_safe(h, m, cos_max)) continue;
         CGAL::Euler::flip_edge(h, m);
@@ -595,20 +616,17 @@ private:
     const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
     const double floor = s.regularity_min_angle * CGAL_PI / 180;
     typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
-    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
     const int no = 99;
     // the change of the number of irregular vertices a flip of h makes, or `no` when it may not be made
     auto gain = [&](halfedge_descriptor h) {
       if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) return no;
       const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
       if(degree(p, m) <= 3 || degree(q, m) <= 3 || halfedge(r, t, m).second) return no;
-      const int before = irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0);
-      const int after = irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1);
-      if(after > before) return no;
-      const Point_3 &P = get(get(CGAL::vertex_point, m), p), &Q = get(get(CGAL::vertex_point, m), q), &R = get(get(CGAL::vertex_point, m), r), &T = get(get(CGAL::vertex_point, m), t);
-      if(std::min(min_angle(R, T, Q), min_angle(T, R, P)) < floor) return no;
+      const int change = irregular_change(h, m);
+      if(change > 0) return no;
+      if(min_angle_after_flip(h, m) < floor) return no;
       if(!flip_is_safe(h, m, cos_max)) return no;
-      return after - before;
+      return change;
     };
     const bool lookahead = s.regularity_lookahead;
     std::size_t flips = 0;
@@ -657,10 +675,7 @@ private:
       const double before = sq(dp - op) + sq(dq - oq) + sq(dr - orr) + sq(dt - ot);
       const double after = sq(dp - 1 - op) + sq(dq - 1 - oq) + sq(dr + 1 - orr) + sq(dt + 1 - ot);
       if(after >= before - 1e-9) continue;
-      const Point_3 &P = get(get(CGAL::vertex_point, m), p), &Q = get(get(CGAL::vertex_point, m), q), &R = get(get(CGAL::vertex_point, m), r), &T = get(get(CGAL::vertex_point, m), t);
-      const double old_min = std::min(min_angle(P, Q, R), min_angle(Q, P, T));
-      const double new_min = std::min(min_angle(R, T, Q), min_angle(T, R, P));
-      if(new_min < s.valence_flip_min_angle_ratio * old_min) continue;
+      if(min_angle_after_flip(h, m) < s.valence_flip_min_angle_ratio * min_angle_of_faces(h, m)) continue;
       if(!flip_is_safe(h, m, cos_max)) continue;
       CGAL::Euler::flip_edge(h, m);
       for(auto x : {p, q, r, t}) put(cache, x, -1.0);
@@ -705,7 +720,7 @@ private:
   enum class Angle_goal { smallest, sum_of_smallest };
 
   // moves vertices by a pattern search on the input (feature vertices along their curves): with
-  // Angle_goal::smallest, the movable vertices of the triangles sharper than sliver_angle, to raise
+  // Angle_goal::smallest, the movable vertices of the triangles sharper than optimized_angle, to raise
   // the smallest angle around them; with Angle_goal::sum_of_smallest, every movable vertex, to
   // raise the sum of its triangles' smallest angles without lowering the smallest (free vertices
   // search in their tangent plane and are projected once: it is a smoothing of vertices already
@@ -717,7 +732,7 @@ private:
     typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
     auto vpm = get(CGAL::vertex_point, m);
     const bool smoothing = goal == Angle_goal::sum_of_smallest;
-    const double sliver = (smoothing ? s.sliver_angle : s.optimized_angle) * CGAL_PI / 180;
+    const double sharp = s.optimized_angle * CGAL_PI / 180;   // (Angle_goal::smallest only)
     std::vector<vertex_descriptor> todo;
     // a feature vertex with one feature edge (the output's edge along its curve is a chord too far
     // from the curve to count) slides along the curve too when it is at a sliver
@@ -731,7 +746,7 @@ private:
       for(auto f : faces(m)) {
         const auto h = halfedge(f, m);
         const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
-        if(min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sliver) continue;
+        if(min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sharp) continue;
         for(vertex_descriptor x : v) if(movability(x) < 2) todo.push_back(x);
       }
       std::sort(todo.begin(), todo.end());
@@ -1253,7 +1268,7 @@ private:
     // moves of the free vertices
     for(vertex_descriptor v : vs) {
       const int c_v = constraint(v, m, is_feature, is_fixed);   // 0 free, 1 on a curve, 2 fixed
-      if(c_v == 2 || (c_v == 0 && is_border(v, m))) continue;
+      if(c_v == 2) continue;   // (a border vertex is on a curve: border edges count as features)
       const std::vector<face_descriptor> fs = internal::faces_around(m, std::array<vertex_descriptor, 1>{{v}});
       const std::size_t before = crossings(fs);
       if(before == 0) continue;
@@ -1317,9 +1332,7 @@ private:
       std::sort(fs.begin(), fs.end());
       const std::size_t before = crossings(fs);
       if(before == 0) continue;
-      const Point_3 &P = get(vpm, p), &Q = get(vpm, q), &R = get(vpm, r), &T = get(vpm, t);
-      const double old_min = std::min(min_angle(P, Q, R), min_angle(Q, P, T));
-      if(std::min(min_angle(R, T, Q), min_angle(T, R, P)) < std::min(old_min, floor)) continue;
+      if(min_angle_after_flip(h, m) < std::min(min_angle_of_faces(h, m), floor)) continue;
       CGAL::Euler::flip_edge(h, m);
       std::vector<face_descriptor> gs = {face(h, m), face(opposite(h, m), m)};
       std::sort(gs.begin(), gs.end());
