@@ -52,14 +52,16 @@ struct Row
 // A contender remeshes `input` into `output` at `target` vertices and returns the seconds spent.
 typedef std::function<double(const Mesh& input, double target, Mesh& output)> Contender;
 
+static unsigned int seed = 1;   // --seed: the random seed of our contenders
+
 static std::map<std::string, Contender> contenders()
 {
   return {
     {"poisson_remesh", [](const Mesh& input, double target, Mesh& output) {
-       return PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(target)).random_seed(1u)).seconds();
+       return PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(target)).random_seed(seed)).seconds();
      }},
     {"poisson_adaptive", [](const Mesh& input, double target, Mesh& output) {
-       return PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(target)).random_seed(1u)
+       return PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(target)).random_seed(seed)
                                                   .density(PR::Curvature_density())).seconds();
      }},
     {"cgal_isotropic", [](const Mesh& input, double target, Mesh& output) {
@@ -206,12 +208,14 @@ int main(int argc, char** argv)
     else if(a == "--json") json = value();
     else if(a == "--data") data = value();
     else if(a == "--scale") scale_table = true;
+    else if(a == "--seed") seed = unsigned(std::stoul(value()));
     else if(a == "--help") {
-      std::cout << "usage: remesh_benchmark [--meshes a,b] [--contenders c,d] [--factor F] [--markdown FILE] [--json FILE] [--data DIR] [--scale]\n"
+      std::cout << "usage: remesh_benchmark [--meshes a,b] [--contenders c,d] [--factor F] [--markdown FILE] [--json FILE] [--data DIR] [--scale] [--seed S]\n"
                    "  runs each contender on CGAL data meshes at F times the input's vertex count\n"
                    "  (a mesh given with a '/' is a file); --scale adds a table of time and peak memory per input\n"
                    "  face and their growth exponents from one mesh size to the next (meshes of one surface at\n"
-                   "  increasing sizes, as make_scale_series writes them)\n";
+                   "  increasing sizes, as make_scale_series writes them); --seed sets our contenders' random\n"
+                   "  seed (default 1)\n";
       return 0;
     }
     else { std::cerr << "remesh_benchmark: unknown option " << a << "\n"; return 2; }
