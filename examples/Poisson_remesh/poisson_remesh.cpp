@@ -49,6 +49,8 @@ static const char* usage =
   "  --fidelity-tolerance T  input vertices farther than T (times the input's bounding-box diagonal)\n"
   "                      from the relaxed mesh are inserted (at most 1% more vertices; default 0.008, 0: off)\n"
   "  --features none     keep no sharp features (borders are always kept)\n"
+  "  --no-grading        sample pointed tips (horns, claws thinner than the spacing) at the spacing\n"
+  "                      too (default: finer around them, graded back to the spacing)\n"
   "  --compare-peer      also run the peer and add its column to the table\n"
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
@@ -67,7 +69,7 @@ int main(int argc, char** argv)
   cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60, fidelity = 0.008;
   unsigned long seed = 0, iterations = 0;
-  bool repair = false, self_intersections = true, compare_peer = false, features = true;
+  bool repair = false, self_intersections = true, compare_peer = false, features = true, grading = true;
   try {
     cli::Arguments args(argc, argv);
     while(!args.done()) {
@@ -86,6 +88,7 @@ int main(int argc, char** argv)
       else if(a == "--svg") svg_file = args.value(a);
       else if(a == "--repair") repair = true;
       else if(a == "--compare-peer") compare_peer = true;
+      else if(a == "--no-grading") grading = false;
       else if(a == "--features") {
         const std::string v = args.value(a);
         if(v != "none") throw cli::Usage_error("--features takes 'none' (use --sharp-angle A for an angle)");
@@ -156,6 +159,7 @@ int main(int argc, char** argv)
           .sharp_angle(sharp_angle)
           .number_of_iterations(unsigned(iterations ? iterations : 10))
           .fidelity_tolerance(fidelity)
+          .feature_grading(grading)
           .density(field));
     });
     std::cout << run.seconds() << " s (features " << run.seconds_features << ", sampling " << run.seconds_sampling
@@ -163,12 +167,14 @@ int main(int argc, char** argv)
               << "  " << run.sampling.number_of_samples << " samples (" << run.sampling.number_of_corners << " corners, "
               << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius;
     if(run.sampling.max_radius > run.sampling.min_radius)
-      std::cout << " (median; adaptive from " << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
+      std::cout << " (median; from " << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
     std::cout << "\n";
     if(run.sampling.statistics.open_iso_curves || run.sampling.statistics.dropped_arcs)
       std::cout << "  note: " << run.sampling.statistics.open_iso_curves << " iso-curves did not close, "
                 << run.sampling.statistics.dropped_arcs << " boundary arcs left inside a disk were dropped ("
                 << run.sampling.statistics.propagations << " propagations)\n";
+    if(run.number_of_graded_tips)
+      std::cout << "  note: sampled finer around " << run.number_of_graded_tips << " pointed tip(s) thinner than the spacing\n";
     if(run.number_of_leftover_input_vertices)
       std::cout << "  note: " << run.number_of_leftover_input_vertices
                 << " input vertices could not be removed without changing the topology; they stay in the output\n";
