@@ -122,12 +122,23 @@ TEST_CASE("pointed tips are sampled finer, graded back to the spacing; needles a
     CHECK(q.number_of_self_intersecting_face_pairs == 0);
     CHECK(q.irregular_share <= 0.25);
   }
-  SECTION("a needle (a sphere's pole pulled out into a 19 degree cone) is not graded: same output") {
+  SECTION("a needle (a sphere's pole pulled out into a spike, angle sum 23 degrees) is not graded: same output") {
     analytic::Soup s = analytic::sphere(32, 16);
     std::size_t top = 0;
     for(std::size_t i = 0; i < s.points.size(); ++i) if(s.points[i][2] > s.points[top][2]) top = i;
     s.points[top][2] = 4;
     const Mesh in = s.to_mesh<Mesh>();
+    // the pole is a tip, and only the needle rule leaves it alone
+    const double r = PR::internal::sampling_radius_from_parameters(in, in.points(), PR::parameters::target_vertex_count(600));
+    const auto features = PR::internal::detect_features_at_radius(in, r, PR::parameters::target_vertex_count(600));
+    REQUIRE(features.corners.size() == 1);
+    std::size_t tips = 0;
+    CHECK(PR::internal::feature_graded_radii(in, in.points(), features, r, {}, tips).empty());
+    CHECK(tips == 0);
+    PR::internal::Feature_grading_settings no_needles;
+    no_needles.needle_angle = 0;
+    CHECK(!PR::internal::feature_graded_radii(in, in.points(), features, r, {}, tips, no_needles).empty());
+    CHECK(tips == 1);
     Mesh a, b;
     const auto run = PR::poisson_remesh(in, a, PR::parameters::target_vertex_count(600).random_seed(1u));
     PR::poisson_remesh(in, b, PR::parameters::target_vertex_count(600).random_seed(1u).feature_grading(false));

@@ -105,6 +105,8 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
     for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(w, tm), tm)) {
       if(is_border(h, tm)) return 0.0;
       const auto a = get(vpm, source(h, tm)) - p, b = get(vpm, target(next(h, tm), tm)) - p;
+      // (a zero-length edge: no angle, and no defect -- atan2(0, -0) would be pi)
+      if(!(CGAL::to_double(a.squared_length()) > 0) || !(CGAL::to_double(b.squared_length()) > 0)) return 0.0;
       sum += std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(a, b).squared_length())), CGAL::to_double(a * b));
     }
     return 2 * CGAL_PI - sum;
@@ -134,13 +136,14 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
     }
     if(at_spacing < 0) at_spacing = length + cone * (s - before);
     if(at_spacing >= 2 * settings.ring_samples * r_at(v)) continue;   // the disks fit around v at the spacing
-    ++graded_tips;
+    bool graded = false;
     for(std::size_t i = 0; i < reached.size(); ++i) {
       const vertex_descriptor w = reached[i].second;
       const double target = std::max(settings.smallest_ratio * r_at(w), ring_lengths[i] / (2 * settings.ring_samples));
       double& x = radii[get(vim, w)];
-      if(target < settings.lowered_ratio * x) { x = target; lowered.push_back(w); }
+      if(target < settings.lowered_ratio * x) { x = target; lowered.push_back(w); graded = true; }
     }
+    if(graded) ++graded_tips;
   }
   if(lowered.empty()) return {};
 
