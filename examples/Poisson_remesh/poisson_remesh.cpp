@@ -167,7 +167,8 @@ int main(int argc, char** argv)
               << "  " << run.sampling.number_of_samples << " samples (" << run.sampling.number_of_corners << " corners, "
               << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius;
     if(run.sampling.max_radius > run.sampling.min_radius)
-      std::cout << " (median; from " << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
+      // (graded tips lower the uniform spacing near them; an adaptive density varies around its median)
+      std::cout << (run.number_of_graded_tips ? " (finer near tips: from " : " (median; from ") << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
     std::cout << "\n";
     if(run.sampling.statistics.open_iso_curves || run.sampling.statistics.dropped_arcs)
       std::cout << "  note: " << run.sampling.statistics.open_iso_curves << " iso-curves did not close, "

@@ -89,11 +89,10 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
   // is finer there already: Max Planck's adaptive remesh lost 5.5 degrees of theta_min with both)
-  std::vector<double> radii = vertex_radii;
-  if(vertex_radii.empty() && choose_parameter(get_parameter(np, internal_np::feature_grading), true)) {
-    std::vector<double> graded = internal::feature_graded_radii(input, in_vpm, features, radius, vertex_radii, result.number_of_graded_tips);
-    if(!graded.empty()) radii = std::move(graded);
-  }
+  const std::vector<double> radii =
+      vertex_radii.empty() && choose_parameter(get_parameter(np, internal_np::feature_grading), true)
+        ? internal::feature_graded_radii(input, in_vpm, features, radius, result.number_of_graded_tips)
+        : vertex_radii;
   result.seconds_features = since(t);
 
   t = now();

@@ -100,7 +100,7 @@ TEST_CASE("pointed tips are sampled finer, graded back to the spacing; needles a
     const double r = PR::internal::sampling_radius_from_parameters(in, in.points(), PR::parameters::default_values());
     const auto features = PR::internal::detect_features_at_radius(in, r, PR::parameters::default_values());
     std::size_t tips = 0;
-    const std::vector<double> radii = PR::internal::feature_graded_radii(in, in.points(), features, r, {}, tips);
+    const std::vector<double> radii = PR::internal::feature_graded_radii(in, in.points(), features, r, tips);
     CHECK(tips >= 2);   // the two horns at least
     REQUIRE(radii.size() == num_vertices(in));
     double smallest = r;
@@ -133,11 +133,11 @@ TEST_CASE("pointed tips are sampled finer, graded back to the spacing; needles a
     const auto features = PR::internal::detect_features_at_radius(in, r, PR::parameters::target_vertex_count(600));
     REQUIRE(features.corners.size() == 1);
     std::size_t tips = 0;
-    CHECK(PR::internal::feature_graded_radii(in, in.points(), features, r, {}, tips).empty());
+    CHECK(PR::internal::feature_graded_radii(in, in.points(), features, r, tips).empty());
     CHECK(tips == 0);
     PR::internal::Feature_grading_settings no_needles;
     no_needles.needle_angle = 0;
-    CHECK(!PR::internal::feature_graded_radii(in, in.points(), features, r, {}, tips, no_needles).empty());
+    CHECK(!PR::internal::feature_graded_radii(in, in.points(), features, r, tips, no_needles).empty());
     CHECK(tips == 1);
     Mesh a, b;
     const auto run = PR::poisson_remesh(in, a, PR::parameters::target_vertex_count(600).random_seed(1u));

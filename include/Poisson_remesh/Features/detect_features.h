@@ -94,6 +94,64 @@ double edge_length(typename boost::graph_traits<TriangleMesh>::halfedge_descript
   return std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, source(h, tm)), get(vpm, target(h, tm)))));
 }
 
+// 2 pi minus the angle sum at v (radians); 0 at an isolated vertex, on a border, and beside a
+// zero-length edge (no angle there: atan2(0, -0) would be pi)
+template <class TriangleMesh, class VPM>
+double angle_defect(typename boost::graph_traits<TriangleMesh>::vertex_descriptor v, const TriangleMesh& tm, VPM vpm)
+{
+  if(halfedge(v, tm) == boost::graph_traits<TriangleMesh>::null_halfedge()) return 0.0;
+  const auto p = get(vpm, v);
+  double sum = 0;
+  for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm)) {
+    if(is_border(h, tm)) return 0.0;
+    const auto a = get(vpm, source(h, tm)) - p, b = get(vpm, target(next(h, tm), tm)) - p;
+    if(!(CGAL::to_double(a.squared_length()) > 0) || !(CGAL::to_double(b.squared_length()) > 0)) return 0.0;
+    sum += std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(a, b).squared_length())), CGAL::to_double(a * b));
+  }
+  return 2 * CGAL_PI - sum;
+}
+
+// The vertices within straight-line distance `reach` of a vertex, reached through edges without
+// leaving that ball, each once (the tips of detect_features() and of the feature grading).
+template <class TriangleMesh, class VPM>
+class Vertex_ball
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+public:
+  /// `index_bound`: one past the largest vertex index
+  Vertex_ball(const TriangleMesh& tm, VPM vpm, std::size_t index_bound)
+    : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), stamp_(index_bound, 0) {}
+
+  /// calls f(w, squared distance from v to w) for v and each vertex of its ball
+  template <class F>
+  void visit(vertex_descriptor v, double reach, F f)
+  {
+    ++visit_;
+    stack_.assign(1, v);
+    stamp_[get(vim_, v)] = visit_;
+    const auto p = get(vpm_, v);
+    while(!stack_.empty()) {
+      const vertex_descriptor w = stack_.back();
+      stack_.pop_back();
+      f(w, CGAL::to_double(CGAL::squared_distance(get(vpm_, w), p)));
+      for(auto h : CGAL::halfedges_around_target(halfedge(w, tm_), tm_)) {
+        const vertex_descriptor x = source(h, tm_);
+        if(stamp_[get(vim_, x)] == visit_) continue;
+        stamp_[get(vim_, x)] = visit_;
+        if(CGAL::to_double(CGAL::squared_distance(get(vpm_, x), p)) <= reach * reach) stack_.push_back(x);
+      }
+    }
+  }
+
+private:
+  const TriangleMesh& tm_;
+  VPM vpm_;
+  typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type vim_;
+  std::vector<std::size_t> stamp_;
+  std::size_t visit_ = 0;
+  std::vector<vertex_descriptor> stack_;
+};
+
 } // namespace internal
 
 /*!
@@ -402,42 +460,14 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
   // corners too, so that the output keeps them (Jiao and Heath's cone points)
   if(scale > 0 && policy == Feature_policy::detect) {
     std::vector<double> defect(num_vertices(tm), 0);
-    for(vertex_descriptor v : vertices(tm)) {
-      if(halfedge(v, tm) == GT::null_halfedge() || is_border(v, tm)) continue;   // isolated, or on a border
-      double sum = 0;
-      for(halfedge_descriptor h : CGAL::halfedges_around_target(v, tm)) {
-        const auto p = get(vpm, v);
-        const auto a = get(vpm, source(h, tm)) - p, b = get(vpm, target(next(h, tm), tm)) - p;
-        sum += std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(a, b).squared_length())), CGAL::to_double(a * b));
-      }
-      defect[vidx(v)] = 2 * CGAL_PI - sum;
-    }
+    for(vertex_descriptor v : vertices(tm)) defect[vidx(v)] = internal::angle_defect(v, tm, vpm);
     std::vector<std::pair<double, vertex_descriptor>> candidates;
-    std::vector<std::size_t> stamp(num_vertices(tm), 0);
-    std::size_t visit = 0;
-    std::vector<vertex_descriptor> stack;
-    auto ball = [&](vertex_descriptor v, auto&& f) {   // vertices within s of v, through edges
-      ++visit;
-      stack.assign(1, v);
-      stamp[vidx(v)] = visit;
-      const auto p = get(vpm, v);
-      while(!stack.empty()) {
-        const vertex_descriptor w = stack.back();
-        stack.pop_back();
-        f(w);
-        for(halfedge_descriptor h : CGAL::halfedges_around_target(w, tm)) {
-          const vertex_descriptor x = source(h, tm);
-          if(stamp[vidx(x)] == visit) continue;
-          stamp[vidx(x)] = visit;
-          if(CGAL::to_double(CGAL::squared_distance(get(vpm, x), p)) <= scale * scale) stack.push_back(x);
-        }
-      }
-    };
+    internal::Vertex_ball<TriangleMesh, decltype(vpm)> ball(tm, vpm, num_vertices(tm));   // within s of v
     for(vertex_descriptor v : vertices(tm)) {
       if(defect[vidx(v)] <= 0 || degree[vidx(v)] > 0) continue;   // corners and curves are traced already
       double sum = 0;
       bool pointiest = true;
-      ball(v, [&](vertex_descriptor w) {
+      ball.visit(v, scale, [&](vertex_descriptor w, double) {
         sum += defect[vidx(w)];
         if(defect[vidx(w)] > defect[vidx(v)] || (defect[vidx(w)] == defect[vidx(v)] && vidx(w) < vidx(v))) pointiest = false;
       });

@@ -50,12 +50,12 @@ struct Feature_grading_settings
   double needle_angle = 90;       ///< degrees: a tip whose own cone angle is under this is left as is
 };
 
-/// The disk radius at each vertex (by vertex index) graded around the pointed tips of `fs`, from
-/// `vertex_radii` (empty: the uniform `radius`); empty when no tip needs it. `graded_tips` is set
-/// to the number of tips that lowered it.
+/// The disk radius at each vertex (by vertex index) for the uniform `radius`, graded around the
+/// pointed tips of `fs`; empty when no tip needs it. `graded_tips` is set to the number of tips
+/// that lowered it.
 template <class TriangleMesh, class VPM>
 std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
-                                         double radius, const std::vector<double>& vertex_radii, std::size_t& graded_tips,
+                                         double radius, std::size_t& graded_tips,
                                          const Feature_grading_settings& settings = Feature_grading_settings())
 {
   graded_tips = 0;
@@ -65,53 +65,15 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
   if(!(radius > 0) || fs.corners.empty()) return {};
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
   const std::size_t n = vertex_index_bound(tm);
-  auto r_at = [&](vertex_descriptor v) { return vertex_radii.empty() ? radius : vertex_radii[get(vim, v)]; };
   auto dist = [&](vertex_descriptor a, vertex_descriptor b) {
     return std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b))));
   };
   std::vector<double> radii(n, radius);
-  if(!vertex_radii.empty()) std::copy(vertex_radii.begin(), vertex_radii.end(), radii.begin());
   std::vector<vertex_descriptor> lowered;   // the vertices whose radius a tip lowers
 
-  // the vertices within `reach` of v (straight-line distance, reached through edges)
-  std::vector<std::size_t> stamp(n, 0);
-  std::size_t visit = 0;
-  std::vector<vertex_descriptor> stack;
+  // the vertices within reach of a tip, nearest first
+  Vertex_ball<TriangleMesh, VPM> ball(tm, vpm, n);
   std::vector<std::pair<double, vertex_descriptor>> reached;
-  auto ball = [&](vertex_descriptor v, double reach) {
-    ++visit;
-    reached.clear();
-    stack.assign(1, v);
-    stamp[get(vim, v)] = visit;
-    while(!stack.empty()) {
-      const vertex_descriptor w = stack.back();
-      stack.pop_back();
-      reached.push_back({dist(v, w), w});
-      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(w, tm), tm)) {
-        const vertex_descriptor x = source(h, tm);
-        if(stamp[get(vim, x)] == visit) continue;
-        stamp[get(vim, x)] = visit;
-        if(dist(v, x) <= reach) stack.push_back(x);
-      }
-    }
-    std::sort(reached.begin(), reached.end(), [&](const auto& a, const auto& b) {
-      return a.first < b.first || (a.first == b.first && get(vim, a.second) < get(vim, b.second));
-    });
-  };
-  // 2 pi minus the angle sum at w: its angle defect (0 on a border)
-  auto defect = [&](vertex_descriptor w) {
-    double sum = 0;
-    const auto p = get(vpm, w);
-    for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(w, tm), tm)) {
-      if(is_border(h, tm)) return 0.0;
-      const auto a = get(vpm, source(h, tm)) - p, b = get(vpm, target(next(h, tm), tm)) - p;
-      // (a zero-length edge: no angle, and no defect -- atan2(0, -0) would be pi)
-      if(!(CGAL::to_double(a.squared_length()) > 0) || !(CGAL::to_double(b.squared_length()) > 0)) return 0.0;
-      sum += std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(a, b).squared_length())), CGAL::to_double(a * b));
-    }
-    return 2 * CGAL_PI - sum;
-  };
-
   std::vector<double> ring_lengths;
   for(vertex_descriptor v : fs.corners) {
     if(halfedge(v, tm) == GT::null_halfedge() || is_border(v, tm)) continue;
@@ -121,10 +83,14 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
     if(curves > 1) continue;
     // a needle -- the cone at the tip itself under `needle_angle` -- is a corner whose own angle is
     // smaller than any finer sampling could help (the star's apex angles are c / 3 at any scale)
-    if(2 * CGAL_PI - defect(v) < settings.needle_angle * CGAL_PI / 180) continue;
+    if(2 * CGAL_PI - angle_defect(v, tm, vpm) < settings.needle_angle * CGAL_PI / 180) continue;
     // L(d) at each vertex within reach, the cone angle piecewise constant between them
-    const double s = 2 * r_at(v);
-    ball(v, settings.tip_reach * s);
+    const double s = 2 * radius;
+    reached.clear();
+    ball.visit(v, settings.tip_reach * s, [&](vertex_descriptor w, double d2) { reached.push_back({std::sqrt(d2), w}); });
+    std::sort(reached.begin(), reached.end(), [&](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && get(vim, a.second) < get(vim, b.second));
+    });
     double cone = 2 * CGAL_PI, length = 0, before = 0, at_spacing = -1;
     ring_lengths.clear();
     for(const auto& [d, w] : reached) {
@@ -132,14 +98,14 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
       length += cone * (d - before);
       before = d;
       ring_lengths.push_back(length);
-      cone = std::max(0.0, cone - defect(w));
+      cone = std::max(0.0, cone - angle_defect(w, tm, vpm));
     }
     if(at_spacing < 0) at_spacing = length + cone * (s - before);
-    if(at_spacing >= 2 * settings.ring_samples * r_at(v)) continue;   // the disks fit around v at the spacing
+    if(at_spacing >= 2 * settings.ring_samples * radius) continue;   // the disks fit around v at the spacing
     bool graded = false;
     for(std::size_t i = 0; i < reached.size(); ++i) {
       const vertex_descriptor w = reached[i].second;
-      const double target = std::max(settings.smallest_ratio * r_at(w), ring_lengths[i] / (2 * settings.ring_samples));
+      const double target = std::max(settings.smallest_ratio * radius, ring_lengths[i] / (2 * settings.ring_samples));
       double& x = radii[get(vim, w)];
       if(target < settings.lowered_ratio * x) { x = target; lowered.push_back(w); graded = true; }
     }
