@@ -176,6 +176,8 @@ int main(int argc, char** argv)
                 << run.sampling.statistics.propagations << " propagations)\n";
     if(run.number_of_graded_tips)
       std::cout << "  note: sampled finer around " << run.number_of_graded_tips << " pointed tip(s) thinner than the spacing\n";
+    if(run.number_of_dropped_feature_curves)
+      std::cout << "  note: " << run.number_of_dropped_feature_curves << " feature curve(s) closer than the spacing beside another were not kept as features\n";
     if(run.number_of_leftover_input_vertices)
       std::cout << "  note: " << run.number_of_leftover_input_vertices
                 << " input vertices could not be removed without changing the topology; they stay in the output\n";

@@ -94,9 +94,19 @@ Feature_set<TriangleMesh> detect_features_at_radius(const TriangleMesh& tm, doub
   return detect_features(tm, Named_function_parameters<double, internal_np::minimum_feature_length_t, NamedParameters>(length, np));
 }
 
+// A feature curve whose samples are refused -- closer than a spacing to the samples of an
+// earlier curve -- for this many in a row runs beside that curve: the output cannot keep both at
+// this spacing (the triangles between them would be slivers, and the curve's output edge would
+// span the whole run). The remesher drops such a curve from the features (sample_features()).
+constexpr std::size_t crowded_curve_run = 3;
+
+// corners, then the samples along the curves (§4.2.4). With `crowded`, the (non-border) curves
+// with crowded_curve_run refused samples in a row are appended to it, and the indices (in the
+// sampler's order) of the samples of those curves that were taken to `crowded_samples`.
 template <class Sampler, class TriangleMesh, class VPM>
 void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
-                     bool first_level, Poisson_disk_sampling_result& result)
+                     bool first_level, Poisson_disk_sampling_result& result,
+                     std::vector<std::size_t>* crowded = nullptr, std::vector<std::size_t>* crowded_samples = nullptr)
 {
   for(auto v : fs.corners) {
     // a location of the corner in one of its faces
@@ -105,13 +115,46 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Fe
     // corners are always kept; on a finer level they are already there and are refused
     if(sampler.insert(location_on_halfedge(h, 1.0, tm), Sample_kind::corner, !first_level)) ++result.number_of_corners;
   }
-  if(sampler.adaptive()) {
-    for(const auto& s : feature_sample_locations_with_spacing(tm, vpm, fs, [&](auto v) { return 2 * sampler.radius_at(v); }))
-      if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
-    return;
+  const auto locations = sampler.adaptive()
+    ? feature_sample_locations_with_spacing(tm, vpm, fs, [&](auto v) { return 2 * sampler.radius_at(v); })
+    : feature_sample_locations(tm, vpm, fs, 2 * sampler.radius());
+  // (the locations come curve by curve)
+  std::size_t run = 0, longest = 0;
+  std::vector<std::size_t> taken;
+  for(std::size_t i = 0; i < locations.size(); ++i) {
+    const auto& s = locations[i];
+    if(sampler.insert(s.location, Sample_kind::feature, true)) {
+      ++result.number_of_feature_samples;
+      taken.push_back(sampler.samples().size() - 1);
+      run = 0;
+    } else {
+      longest = std::max(longest, ++run);
+    }
+    if(i + 1 == locations.size() || locations[i + 1].curve != s.curve) {
+      if(crowded && longest >= crowded_curve_run && !fs.curves[s.curve].border) {
+        crowded->push_back(s.curve);
+        crowded_samples->insert(crowded_samples->end(), taken.begin(), taken.end());
+      }
+      run = longest = 0;
+      taken.clear();
+    }
   }
-  for(const auto& s : feature_sample_locations(tm, vpm, fs, 2 * sampler.radius()))
-    if(sampler.insert(s.location, Sample_kind::feature, true)) ++result.number_of_feature_samples;
+}
+
+// drops the curves `which` (indices in fs.curves) from the features: their edges are no feature
+// edges any more; the corners stay corners
+template <class TriangleMesh>
+void drop_feature_curves(Feature_set<TriangleMesh>& fs, std::vector<std::size_t> which, const TriangleMesh& tm)
+{
+  std::sort(which.begin(), which.end());
+  which.erase(std::unique(which.begin(), which.end()), which.end());
+  for(auto it = which.rbegin(); it != which.rend(); ++it) {
+    for(auto h : fs.curves[*it].halfedges) {
+      const std::size_t e = std::size_t(get(fs.eim, edge(h, tm)));
+      if(fs.feature_edge[e]) { fs.feature_edge[e] = false; --fs.number_of_feature_edges; }
+    }
+    fs.curves.erase(fs.curves.begin() + std::ptrdiff_t(*it));
+  }
 }
 
 // poisson_disk_sample() with the features already detected (the remesher shares them with the
@@ -121,7 +164,8 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Fe
 template <class TriangleMesh, class VPM, class OutputIterator>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
                                                  double radius, unsigned int seed, OutputIterator out,
-                                                 const std::vector<double>& vertex_radii = std::vector<double>())
+                                                 const std::vector<double>& vertex_radii = std::vector<double>(),
+                                                 std::vector<std::size_t>* crowded_curves = nullptr)
 {
   Poisson_disk_sampling_result result;
   result.radius = result.min_radius = result.max_radius = radius;
@@ -134,10 +178,17 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
     result.min_radius = *std::min_element(vertex_radii.begin(), vertex_radii.end());
     result.max_radius = *std::max_element(vertex_radii.begin(), vertex_radii.end());
   }
-  internal::sample_features(sampler, tm, vpm, fs, true, result);
+  std::vector<std::size_t> crowded_samples;
+  internal::sample_features(sampler, tm, vpm, fs, true, result, crowded_curves, &crowded_samples);
   sampler.seed_components();
   sampler.fill();
-  for(const auto& s : sampler.samples()) *out++ = s;
+  // the samples of crowded curves are surface samples (the caller drops those curves)
+  std::sort(crowded_samples.begin(), crowded_samples.end());
+  for(std::size_t i = 0; i < sampler.samples().size(); ++i) {
+    auto s = sampler.samples()[i];
+    if(std::binary_search(crowded_samples.begin(), crowded_samples.end(), i)) { s.kind = Sample_kind::surface; --result.number_of_feature_samples; }
+    *out++ = s;
+  }
   result.number_of_samples = sampler.samples().size();
   result.statistics = sampler.statistics();
   return result;

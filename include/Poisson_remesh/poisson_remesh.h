@@ -40,6 +40,9 @@ struct Poisson_remesh_result
   std::size_t number_of_leftover_input_vertices = 0;  ///< input vertices the tessellation could not remove
   std::size_t number_of_merged_samples = 0;  ///< samples on the vertex of another (nearly zero-area input faces)
   std::size_t number_of_graded_tips = 0;     ///< pointed tips sampled finer (`feature_grading`)
+  /// feature curves not kept: closer than a spacing beside another curve for several spacings,
+  /// their samples were refused (internal::crowded_curve_run in a row)
+  std::size_t number_of_dropped_feature_curves = 0;
   Relaxation_statistics relaxation;
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
   double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
@@ -86,7 +89,7 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(input, in_vpm, np)
                                              : internal::quantile(vertex_radii, 0.5);
   // one feature set for the sampler and the tessellation
-  const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
+  Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
   // is finer there already: Max Planck's adaptive remesh lost 5.5 degrees of theta_min with both)
   const std::vector<double> radii =
@@ -98,7 +101,12 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   t = now();
   std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
   const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
-  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples), radii);
+  std::vector<std::size_t> crowded;
+  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples), radii, &crowded);
+  // a feature curve that runs closer than a spacing beside another (its samples refused in a
+  // row) is no feature of the output: its samples are surface samples already
+  result.number_of_dropped_feature_curves = crowded.size();
+  if(!crowded.empty()) internal::drop_feature_curves(features, crowded, input);
   result.seconds_sampling = since(t);
 
   t = now();

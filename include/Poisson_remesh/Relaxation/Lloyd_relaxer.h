@@ -79,6 +79,13 @@ struct Relaxation_settings
   /// across by the triangles -- is inserted there (the nearest triangle split at it), at most
   /// one per triangle and its neighbours; 0 disables. Needs the new-vertex callback of relax().
   double max_deviation = 0.008;
+  /// the input vertices are checked so three times: after the Lloyd rounds, after the rounds that
+  /// follow the collapses, and after the angle optimization (whose moves may cut a crest again;
+  /// new vertices there are followed by Delaunay flips and angle optimization rounds). An
+  /// insertion that would make the mesh cut itself is taken back and tried as a split of an edge
+  /// of that triangle instead (at the side of a tip, the nearest triangle's three new ones may cut
+  /// the next ones).
+  bool final_fidelity_pass = true;
   /// at most this share of the vertex count is inserted so, farthest first (a mesh much too
   /// coarse for its input everywhere is not mended by pinned vertices)
   double max_deviation_insertions = 0.01;
@@ -126,6 +133,12 @@ struct Relaxation_settings
   /// their smallest angle stays over `untangle_min_angle` (or what it was); 0 disables
   unsigned int untangle_rounds = 3;
   double untangle_min_angle = 30;
+  /// (beyond the paper) a Lloyd move is refused when it would make one of the vertex's triangles
+  /// sharper than this (degrees) and sharper than they are: on thin parts and near graded tips a
+  /// centroid projected back onto the input can line a vertex up with two neighbours, and the
+  /// later rounds do not undo that (dino: 6-8 degrees at 3 of 8 seeds, 33.7 or more with it); 0
+  /// disables
+  double lloyd_min_angle = 25;
   /// a regularity flip that leaves as many irregular vertices (it moves one: a 5-7 pair glides) is
   /// made when a flip of an edge at one of its four vertices then makes fewer; both flips under
   /// the same guards. Irregular vertices 1.3-3.0 points fewer on the benchmark models.
@@ -288,7 +301,7 @@ public:
                               NewVertex new_vertex, VertexDensity vertex_density) const
   {
     auto lloyd_pass = [&](Mesh& m, IsFeatureEdge f, auto c, Relaxation_statistics& st) {
-      this->lloyd_pass(m, f, c, st, vertex_density);
+      this->lloyd_pass(m, f, c, st, vertex_density, s.lloyd_min_angle);
     };
     typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
     std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity pass stay where they are put
@@ -304,7 +317,7 @@ public:
       if(s.long_edge_ratio > 0) changed += split_pass(mesh, is_feature, new_vertex, s, stats);
     if(s.collapse_slivers) changed += collapse_pass(mesh, is_feature, is_corner, s, stats);
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
-      if(s.max_deviation > 0) changed += fidelity_pass(mesh, new_vertex, s, stats, pinned);
+      if(s.max_deviation > 0) changed += fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned);
     std::sort(pinned.begin(), pinned.end());
     if(changed > 0)
       for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) {
@@ -313,7 +326,7 @@ public:
         if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
       }
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
-      if(s.max_deviation > 0 && fidelity_pass(mesh, new_vertex, s, stats, pinned) > 0) {
+      if(s.max_deviation > 0 && fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned) > 0) {
         std::sort(pinned.begin(), pinned.end());
         if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
         if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
@@ -335,6 +348,16 @@ public:
       if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
       if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
     }
+    // the angle moves may cut a crest again: its input vertices are inserted there too
+    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+      if(s.final_fidelity_pass && s.max_deviation > 0 && fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned) > 0) {
+        std::sort(pinned.begin(), pinned.end());
+        if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
+        for(unsigned int it = 0; it < s.angle_rounds; ++it) {
+          if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
+          if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
+        }
+      }
     // and where the angles are still too small, the connectivity changes there (a flip, a vertex
     // removed or inserted)
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
@@ -489,8 +512,9 @@ private:
 
   template <class Mesh, class IsFeatureEdge, class IsCorner, class VertexDensity>
   void lloyd_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Relaxation_statistics& stats,
-                  VertexDensity vertex_density) const
+                  VertexDensity vertex_density, double min_angle_degrees = 0) const
   {
+    const double floor = min_angle_degrees * CGAL_PI / 180;
     for(auto v : vertices(m)) {
       if(is_corner(v)) continue;
       const std::size_t fd = feature_degree(v, m, is_feature);
@@ -521,6 +545,10 @@ private:
         continue;
       }
       if(folds(v, m, target)) { ++stats.refused_moves; continue; }
+      if(floor > 0) {   // (Relaxation_settings::lloyd_min_angle)
+        const double after = smallest_angles_around(v, m, target).first;
+        if(after < floor && after < smallest_angles_around(v, m, get(get(CGAL::vertex_point, m), v)).first) { ++stats.refused_moves; continue; }
+      }
       put(get(CGAL::vertex_point, m), v, target);
       ++stats.moves;
     }
@@ -1160,8 +1188,8 @@ private:
     return done + changed;
   }
 
-  template <class Mesh, class NewVertex>
-  std::size_t fidelity_pass(Mesh& m, NewVertex new_vertex, const Relaxation_settings& s, Relaxation_statistics& stats,
+  template <class Mesh, class IsFeatureEdge, class NewVertex>
+  std::size_t fidelity_pass(Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Relaxation_settings& s, Relaxation_statistics& stats,
                             std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added) const
   {
     typedef boost::graph_traits<Mesh> GT;
@@ -1211,13 +1239,48 @@ private:
     });
     std::sort(undo.begin(), undo.end());
     undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
-    for(vertex_descriptor v : undo) CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
+    std::vector<std::pair<Point_3, typename GT::halfedge_descriptor>> retry;   // (a halfedge of the triangle it was in)
+    for(vertex_descriptor v : undo) {
+      const Point_3 p = get(vpm, v);
+      retry.push_back({p, CGAL::Euler::remove_center_vertex(halfedge(v, m), m)});
+    }
     for(vertex_descriptor v : mine)
       if(!std::binary_search(undo.begin(), undo.end(), v)) {
         new_vertex(v, false);
         added.push_back(v);
         ++done;
       }
+    // one taken back splits an edge of that triangle instead, the nearest edge first: the first
+    // split that makes the mesh cut itself nowhere new and turns no triangle over is kept (not a
+    // feature edge: it would lose its feature)
+    for(const auto& [p, g] : retry) {
+      std::vector<std::pair<double, typename GT::halfedge_descriptor>> order;
+      for(auto x : CGAL::halfedges_around_face(g, m)) {
+        if(is_border(opposite(x, m), m) || is_feature(edge(x, m))) continue;
+        order.push_back({CGAL::to_double(CGAL::squared_distance(p, typename GeomTraits::Segment_3(get(vpm, source(x, m)), get(vpm, target(x, m))))), x});
+      }
+      std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for(const auto& candidate : order) {
+        const auto x = candidate.second;
+        const vertex_descriptor a = source(x, m), b = target(x, m);
+        const Vector_3 n1 = normal(get(vpm, a), get(vpm, b), get(vpm, target(next(x, m), m)));
+        const Vector_3 n2 = normal(get(vpm, b), get(vpm, a), get(vpm, target(next(opposite(x, m), m), m)));
+        const vertex_descriptor v = insert_vertex_on_edge(x, p, m);
+        bool ok = true;
+        for(auto h : CGAL::halfedges_around_target(v, m)) {
+          const Vector_3 n = normal(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m)));
+          ok = ok && (cos_between(n, n1) > 0 || cos_between(n, n2) > 0);
+        }
+        if(ok)
+          for_vertices_of_new_intersections(m, before, internal::faces_around(m, std::vector<vertex_descriptor>(1, v)),
+                                            [&](vertex_descriptor y) { if(y == v) ok = false; });
+        if(!ok) { remove_vertex_on_edge(v, a, b, m); continue; }
+        new_vertex(v, false);
+        added.push_back(v);
+        ++done;
+        break;
+      }
+    }
     stats.fidelity_insertions += done;
     return done;
   }
