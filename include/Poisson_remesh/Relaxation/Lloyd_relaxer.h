@@ -72,7 +72,9 @@ struct Relaxation_settings
   /// samples that no vertex move can mend
   bool collapse_slivers = true;
   double sliver_angle = 30;
-  double sliver_edge_ratio = 0.45;
+  /// (0.5; it was 0.45, which left triceratops' triangle of three corners on a toe, two of them
+  /// 0.6 spacings apart and the third 1.3 away -- a ratio of 0.452 -- at 26.7 degrees)
+  double sliver_edge_ratio = 0.5;
   unsigned int rounds_after_collapse = 3;
   /// (beyond the paper) an input vertex farther than this (times the input's bounding-box
   /// diagonal) from the relaxed mesh -- a rim or a crest finer than the sample spacing, cut
@@ -133,11 +135,12 @@ struct Relaxation_settings
   /// their smallest angle stays over `untangle_min_angle` (or what it was); 0 disables
   unsigned int untangle_rounds = 3;
   double untangle_min_angle = 30;
-  /// (beyond the paper) a Lloyd move is refused when it would make one of the vertex's triangles
-  /// sharper than this (degrees) and sharper than they are: on thin parts and near graded tips a
-  /// centroid projected back onto the input can line a vertex up with two neighbours, and the
-  /// later rounds do not undo that (dino: 6-8 degrees at 3 of 8 seeds, 33.7 or more with it); 0
-  /// disables
+  /// (beyond the paper) a Lloyd move that would make one of the vertex's triangles sharper than
+  /// this (degrees) and sharper than they are goes half the way; if that still does, it is
+  /// refused: on thin parts and near graded tips a centroid projected back onto the input can
+  /// line a vertex up with two neighbours, and the later rounds do not undo that (dino: 6-8
+  /// degrees at 3 of 8 seeds, 33 or more with it; refusing without the half step left Max
+  /// Planck's adaptive remesh at 12.4 degrees); 0 disables
   double lloyd_min_angle = 25;
   /// a regularity flip that leaves as many irregular vertices (it moves one: a 5-7 pair glides) is
   /// made when a flip of an edge at one of its four vertices then makes fewer; both flips under
@@ -546,8 +549,14 @@ private:
       }
       if(folds(v, m, target)) { ++stats.refused_moves; continue; }
       if(floor > 0) {   // (Relaxation_settings::lloyd_min_angle)
-        const double after = smallest_angles_around(v, m, target).first;
-        if(after < floor && after < smallest_angles_around(v, m, get(get(CGAL::vertex_point, m), v)).first) { ++stats.refused_moves; continue; }
+        const Point_3 from = get(get(CGAL::vertex_point, m), v);
+        const double before = smallest_angles_around(v, m, from).first;
+        double after = smallest_angles_around(v, m, target).first;
+        if(after < floor && after < before) {   // half the way, on the input (on the curve)
+          target = fd == 0 ? project_on_surface(CGAL::midpoint(from, target), from) : project_on_features(CGAL::midpoint(from, target), from);
+          after = smallest_angles_around(v, m, target).first;
+        }
+        if(after < floor && after < before) { ++stats.refused_moves; continue; }
       }
       put(get(CGAL::vertex_point, m), v, target);
       ++stats.moves;
