@@ -29,7 +29,7 @@ struct Poisson_disk_sampling_result
   double min_radius = 0, max_radius = 0; ///< the range of the disk radius (equal to r for uniform density)
   std::size_t number_of_samples = 0;
   std::size_t number_of_corners = 0;
-  std::size_t number_of_feature_samples = 0;
+  std::size_t number_of_feature_samples = 0;  ///< (poisson_remesh(): without those of the dropped curves)
   Sampling_statistics statistics;
 };
 
@@ -94,10 +94,13 @@ Feature_set<TriangleMesh> detect_features_at_radius(const TriangleMesh& tm, doub
   return detect_features(tm, Named_function_parameters<double, internal_np::minimum_feature_length_t, NamedParameters>(length, np));
 }
 
-// A feature curve whose samples are refused -- closer than a spacing to the samples of an
-// earlier curve -- for this many in a row runs beside that curve: the output cannot keep both at
-// this spacing (the triangles between them would be slivers, and the curve's output edge would
-// span the whole run). The remesher drops such a curve from the features (sample_features()).
+// A feature curve whose samples are refused -- closer than the spacing to an earlier sample --
+// this many times in a row runs beside another curve (the corners and the curve's own samples
+// cannot refuse three in a row, but a tip's disk or a hairpin turn could): the output cannot keep
+// both at this spacing (the triangles between them would be slivers, and the curve's output edge
+// would span the whole run). The remesher drops such a curve, whole, from the features
+// (sample_features()); its samples stay, as surface samples. A curve of fewer than three
+// planned samples is never dropped.
 constexpr std::size_t crowded_curve_run = 3;
 
 // corners, then the samples along the curves (§4.2.4). With `crowded`, the (non-border) curves
@@ -133,7 +136,7 @@ void sample_features(Sampler& sampler, const TriangleMesh& tm, VPM vpm, const Fe
     if(i + 1 == locations.size() || locations[i + 1].curve != s.curve) {
       if(crowded && longest >= crowded_curve_run && !fs.curves[s.curve].border) {
         crowded->push_back(s.curve);
-        crowded_samples->insert(crowded_samples->end(), taken.begin(), taken.end());
+        if(crowded_samples) crowded_samples->insert(crowded_samples->end(), taken.begin(), taken.end());
       }
       run = longest = 0;
       taken.clear();

@@ -80,13 +80,13 @@ struct Relaxation_settings
   /// diagonal) from the relaxed mesh -- a rim or a crest finer than the sample spacing, cut
   /// across by the triangles -- is inserted there (the nearest triangle split at it), at most
   /// one per triangle and its neighbours; 0 disables. Needs the new-vertex callback of relax().
+  /// An insertion that would make the mesh cut itself is taken back and tried as a split of an
+  /// edge of that triangle instead (at the side of a tip, the nearest triangle's three new ones
+  /// may cut the next ones). The input vertices are checked after the Lloyd rounds and after the
+  /// rounds that follow the collapses.
   double max_deviation = 0.008;
-  /// the input vertices are checked so three times: after the Lloyd rounds, after the rounds that
-  /// follow the collapses, and after the angle optimization (whose moves may cut a crest again;
-  /// new vertices there are followed by Delaunay flips and angle optimization rounds). An
-  /// insertion that would make the mesh cut itself is taken back and tried as a split of an edge
-  /// of that triangle instead (at the side of a tip, the nearest triangle's three new ones may cut
-  /// the next ones).
+  /// and once more after the angle optimization, whose moves may cut a crest again (new vertices
+  /// there are followed by Delaunay flips and angle optimization rounds)
   bool final_fidelity_pass = true;
   /// at most this share of the vertex count is inserted so, farthest first (a mesh much too
   /// coarse for its input everywhere is not mended by pinned vertices)
@@ -522,6 +522,7 @@ private:
       if(is_corner(v)) continue;
       const std::size_t fd = feature_degree(v, m, is_feature);
       Point_3 target;
+      double max_jump = 0;   // (a free vertex: how far its projection onto the input may jump)
       if(fd == 0) {
         if(!lloyd_target(v, m, target, vertex_density)) continue;
         // the closest point of the input must be the local one: in thin parts (horns, legs, tails)
@@ -534,7 +535,8 @@ private:
           ring += std::sqrt(CGAL::to_double(CGAL::squared_distance(get(get(CGAL::vertex_point, m), source(h, m)), get(get(CGAL::vertex_point, m), v))));
           ++nr;
         }
-        if(nr == 0 || CGAL::to_double(CGAL::squared_distance(projected, target)) > CGAL::square(0.25 * ring / double(nr))) {
+        if(nr > 0) max_jump = 0.25 * ring / double(nr);
+        if(nr == 0 || CGAL::to_double(CGAL::squared_distance(projected, target)) > CGAL::square(max_jump)) {
           ++stats.refused_moves;
           continue;
         }
@@ -553,7 +555,9 @@ private:
         const double before = smallest_angles_around(v, m, from).first;
         double after = smallest_angles_around(v, m, target).first;
         if(after < floor && after < before) {   // half the way, on the input (on the curve)
-          target = fd == 0 ? project_on_surface(CGAL::midpoint(from, target), from) : project_on_features(CGAL::midpoint(from, target), from);
+          const Point_3 half = CGAL::midpoint(from, target);
+          target = fd == 0 ? project_on_surface(half, from) : project_on_features(half, from);
+          if(fd == 0 && CGAL::to_double(CGAL::squared_distance(target, half)) > CGAL::square(max_jump)) { ++stats.refused_moves; continue; }
           after = smallest_angles_around(v, m, target).first;
         }
         if(after < floor && after < before) { ++stats.refused_moves; continue; }
@@ -1276,12 +1280,14 @@ private:
         const Vector_3 n2 = normal(get(vpm, b), get(vpm, a), get(vpm, target(next(opposite(x, m), m), m)));
         const vertex_descriptor v = insert_vertex_on_edge(x, p, m);
         bool ok = true;
-        for(auto h : CGAL::halfedges_around_target(v, m)) {
+        for(auto h : CGAL::halfedges_around_target(v, m)) {   // (the 60 degrees of folds())
           const Vector_3 n = normal(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m)));
-          ok = ok && (cos_between(n, n1) > 0 || cos_between(n, n2) > 0);
+          ok = ok && (cos_between(n, n1) >= 0.5 || cos_between(n, n2) >= 0.5);
         }
+        // (every crossing of a triangle at v is new; `before` is not used here: its face indices
+        // may have been recycled by the removals above)
         if(ok)
-          for_vertices_of_new_intersections(m, before, internal::faces_around(m, std::vector<vertex_descriptor>(1, v)),
+          for_vertices_of_new_intersections(m, decltype(before)(), internal::faces_around(m, std::vector<vertex_descriptor>(1, v)),
                                             [&](vertex_descriptor y) { if(y == v) ok = false; });
         if(!ok) { remove_vertex_on_edge(v, a, b, m); continue; }
         new_vertex(v, false);
