@@ -106,6 +106,28 @@ TEST_CASE("other seeds: a crease beside another is dropped, Lloyd moves make no 
   }
 }
 
+TEST_CASE("of two creases closer than the spacing, the output keeps one", "[remesh][features]")
+{
+  // a step across a plane: two creases of 63 degrees along y, 0.11 apart, at a spacing of 0.2
+  analytic::Soup soup = analytic::plane(40, 40);
+  for(auto& p : soup.points) p[2] = p[0] <= 0.45 ? 0.0 : p[0] >= 0.5 - 1e-12 ? 0.1 : 0.1 * (p[0] - 0.45) / 0.05;
+  const Mesh in = soup.to_mesh<Mesh>();
+  Mesh out;
+  const auto run = PR::poisson_remesh(in, out, PR::parameters::sampling_radius(0.1).random_seed(1u));
+  // the creases were features (8 corners: the plane's four and the four where the creases meet
+  // the border) ...
+  REQUIRE(run.sampling.number_of_corners == 8);
+  // ... and the one sampled second, all its samples refused, is no feature of the output
+  CHECK(run.number_of_dropped_feature_curves == 1);
+  CHECK(CGAL::is_valid_polygon_mesh(out));
+  const PR::Quality_report a = PR::quality_report(in), b = PR::quality_report(out, in);
+  CHECK(b.euler_characteristic == a.euler_characteristic);
+  CHECK(vertices_off_input(out, in) < 1e-9);
+  double longest = 0;
+  for(auto e : edges(out)) longest = std::max(longest, std::sqrt(CGAL::to_double(CGAL::squared_distance(out.point(source(e, out)), out.point(target(e, out))))));
+  CHECK(longest < 0.6);   // 3 spacings (the longest are border edges beside the corners, 0.46)
+}
+
 TEST_CASE("remeshing is deterministic for a given seed", "[remesh]")
 {
   Mesh in, a, b;
