@@ -92,6 +92,39 @@ std::size_t vertex_index_bound(const TriangleMesh& tm)
   return n;
 }
 
+// per vertex index: its neighbours' indices and the lengths of the edges to them
+typedef std::vector<std::vector<std::pair<std::size_t, double>>> Edge_adjacency;
+template <class TriangleMesh, class VPM>
+Edge_adjacency edge_adjacency(const TriangleMesh& tm, VPM vpm)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  Edge_adjacency adj(vertex_index_bound(tm));
+  for(auto e : edges(tm)) {
+    const auto a = source(halfedge(e, tm), tm), b = target(halfedge(e, tm), tm);
+    const double length = std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b))));
+    adj[get(vim, a)].push_back({std::size_t(get(vim, b)), length});
+    adj[get(vim, b)].push_back({std::size_t(get(vim, a)), length});
+  }
+  return adj;
+}
+
+// (radius, vertex index), smallest first
+typedef std::pair<double, std::size_t> Radius_item;
+typedef std::priority_queue<Radius_item, std::vector<Radius_item>, std::greater<Radius_item>> Radius_queue;
+
+// lowers the radii `r` so that they grow by at most `rate` per unit of length along the edges,
+// from the vertices in `queue` (a Dijkstra sweep; it empties the queue)
+inline void limit_radius_growth(std::vector<double>& r, const Edge_adjacency& adj, double rate, Radius_queue& queue)
+{
+  while(!queue.empty()) {
+    const Radius_item it = queue.top();
+    queue.pop();
+    if(it.first > r[it.second]) continue;
+    for(const auto& nb : adj[it.second])
+      if(r[nb.first] > it.first + rate * nb.second) { r[nb.first] = it.first + rate * nb.second; queue.push({r[nb.first], nb.first}); }
+  }
+}
+
 // per vertex: the larger of the RMS of the principal curvatures of a degree-2 jet fitted to the
 // 2-ring (CGAL::Monge_via_jet_fitting) and the largest normal curvature across an incident edge
 template <class TriangleMesh, class VPM>
@@ -236,7 +269,6 @@ template <class TriangleMesh, class VPM>
 std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std::vector<double>& density,
                                       double target_vertex_count, double min_edge = 0, double max_edge = 0)
 {
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   namespace PMP = CGAL::Polygon_mesh_processing;
   if(!(target_vertex_count > 0)) throw std::invalid_argument("vertex_disk_radii: the target vertex count must be positive");
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
@@ -250,13 +282,6 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
   const double c = paper_rho * paper_rho / (2 * std::sqrt(3.0));
   std::vector<double> base(n);
   for(std::size_t i = 0; i < n; ++i) base[i] = density[i] > 0 ? std::sqrt(c / density[i]) : 1.0;   // radius for density 1x
-  std::vector<std::pair<vertex_descriptor, vertex_descriptor>> edge_ends;
-  std::vector<double> edge_len;
-  for(auto e : edges(tm)) {
-    const auto a = source(halfedge(e, tm), tm), b = target(halfedge(e, tm), tm);
-    edge_ends.push_back({a, b});
-    edge_len.push_back(std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b)))));
-  }
   std::vector<double> area(num_faces(tm));
   std::vector<std::array<std::size_t, 3>> fv;
   // |grad r| of a face from its three radii, in the face's own 2D layout
@@ -284,33 +309,19 @@ std::vector<double> vertex_disk_radii(const TriangleMesh& tm, VPM vpm, const std
     }
     face_gradient.push_back(g);
   }
-  std::vector<std::vector<std::pair<std::size_t, double>>> adj(n);
-  for(std::size_t k = 0; k < edge_ends.size(); ++k) {
-    const std::size_t a = get(vim, edge_ends[k].first), b = get(vim, edge_ends[k].second);
-    adj[a].push_back({b, edge_len[k]});
-    adj[b].push_back({a, edge_len[k]});
-  }
+  const internal::Edge_adjacency adj = internal::edge_adjacency(tm, vpm);
   std::vector<double> r(n);
   // radii for scale s: s * base, clamped, gradient-limited (a Dijkstra-like sweep from the smallest)
   auto radii = [&](double s) {
-    typedef std::pair<double, std::size_t> Item;
-    std::vector<Item> items(n);
+    std::vector<internal::Radius_item> items(n);
     for(std::size_t i = 0; i < n; ++i) {
       r[i] = s * base[i];
       if(min_edge > 0) r[i] = std::max(r[i], 0.5 * min_edge);
       if(max_edge > 0) r[i] = std::min(r[i], 0.5 * max_edge);
       items[i] = {r[i], i};
     }
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q(std::greater<Item>(), std::move(items));
-    auto sweep = [&]() {
-      while(!q.empty()) {
-        const Item it = q.top();
-        q.pop();
-        if(it.first > r[it.second]) continue;
-        for(const auto& nb : adj[it.second])
-          if(r[nb.first] > it.first + 0.5 * nb.second) { r[nb.first] = it.first + 0.5 * nb.second; q.push({r[nb.first], nb.first}); }
-      }
-    };
+    internal::Radius_queue q(std::greater<internal::Radius_item>(), std::move(items));
+    auto sweep = [&]() { internal::limit_radius_growth(r, adj, 0.5, q); };
     sweep();
     // the gradient inside a needle face can be far steeper than along its edges: such faces
     // have their radii pulled towards their smallest one (radii only decrease, so this ends)

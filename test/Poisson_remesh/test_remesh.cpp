@@ -37,6 +37,14 @@ double vertices_off_input(const Mesh& out, const Mesh& in)
   return worst / PR::quality_report(in, PR::parameters::check_self_intersections(false)).bbox_diagonal;
 }
 
+double longest_edge(const Mesh& m)
+{
+  double longest = 0;
+  for(auto e : edges(m))
+    longest = std::max(longest, std::sqrt(CGAL::to_double(CGAL::squared_distance(m.point(source(e, m)), m.point(target(e, m))))));
+  return longest;
+}
+
 } // namespace
 
 TEST_CASE("remeshed meshes keep the input's topology and lie on it", "[remesh]")
@@ -93,10 +101,7 @@ TEST_CASE("other seeds: a crease beside another is dropped, Lloyd moves make no 
     Mesh out;
     const auto run = PR::poisson_remesh(in, out, PR::parameters::random_seed(seed));
     CHECK(run.number_of_dropped_feature_curves >= 1);
-    const double spacing = 2 * run.sampling.radius;
-    double longest = 0;
-    for(auto e : edges(out)) longest = std::max(longest, std::sqrt(CGAL::to_double(CGAL::squared_distance(out.point(source(e, out)), out.point(target(e, out))))));
-    CHECK(longest < 3 * spacing);
+    CHECK(longest_edge(out) < 3 * 2 * run.sampling.radius);   // 3 spacings
     const PR::Quality_report b = PR::quality_report(out, in);
     CHECK(b.min_angle >= 30);
     CHECK(b.mean_min_angle >= 52);
@@ -123,9 +128,7 @@ TEST_CASE("of two creases closer than the spacing, the output keeps one", "[reme
   const PR::Quality_report a = PR::quality_report(in), b = PR::quality_report(out, in);
   CHECK(b.euler_characteristic == a.euler_characteristic);
   CHECK(vertices_off_input(out, in) < 1e-9);
-  double longest = 0;
-  for(auto e : edges(out)) longest = std::max(longest, std::sqrt(CGAL::to_double(CGAL::squared_distance(out.point(source(e, out)), out.point(target(e, out))))));
-  CHECK(longest < 0.6);   // 3 spacings (the longest are border edges beside the corners, 0.46)
+  CHECK(longest_edge(out) < 0.6);   // 3 spacings (the longest are border edges beside the corners, 0.46)
 }
 
 TEST_CASE("remeshing is deterministic for a given seed", "[remesh]")

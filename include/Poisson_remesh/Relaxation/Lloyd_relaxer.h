@@ -310,6 +310,13 @@ public:
     std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity pass stay where they are put
     auto is_fixed = [&](vertex_descriptor v) { return is_corner(v) || std::binary_search(pinned.begin(), pinned.end(), v); };
     Relaxation_statistics stats;
+    // the angle optimization rounds, each followed by Delaunay flips
+    auto optimize_angles = [&] {
+      for(unsigned int it = 0; it < s.angle_rounds; ++it) {
+        if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
+        if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
+      }
+    };
     for(unsigned int it = 0; it < s.iterations; ++it) {
       lloyd_pass(mesh, is_feature, is_corner, stats);
       if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
@@ -347,19 +354,13 @@ public:
       if(regularity_pass(mesh, is_feature, s, stats) == 0) break;
       angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::sum_of_smallest);
     }
-    for(unsigned int it = 0; it < s.angle_rounds; ++it) {
-      if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
-      if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-    }
+    optimize_angles();
     // the angle moves may cut a crest again: its input vertices are inserted there too
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.final_fidelity_pass && s.max_deviation > 0 && fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned) > 0) {
         std::sort(pinned.begin(), pinned.end());
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-        for(unsigned int it = 0; it < s.angle_rounds; ++it) {
-          if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
-          if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-        }
+        optimize_angles();
       }
     // and where the angles are still too small, the connectivity changes there (a flip, a vertex
     // removed or inserted)
@@ -367,10 +368,7 @@ public:
       for(unsigned int round = 0; round < s.refinement_rounds; ++round) {
         if(refinement_pass(mesh, is_feature, is_fixed, new_vertex, s, stats) == 0) break;
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-        for(unsigned int it = 0; it < s.angle_rounds; ++it) {
-          if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest) == 0) break;
-          if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-        }
+        optimize_angles();
       }
     for(unsigned int round = 0; round < s.untangle_rounds; ++round)
       if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;

@@ -32,8 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <queue>
 #include <utility>
 #include <vector>
 
@@ -65,9 +63,6 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
   if(!(radius > 0) || fs.corners.empty()) return {};
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
   const std::size_t n = vertex_index_bound(tm);
-  auto dist = [&](vertex_descriptor a, vertex_descriptor b) {
-    return std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b))));
-  };
   std::vector<double> radii(n, radius);
   std::vector<vertex_descriptor> lowered;   // the vertices whose radius a tip lowers
 
@@ -115,26 +110,9 @@ std::vector<double> feature_graded_radii(const TriangleMesh& tm, VPM vpm, const 
 
   // from those, the radius grows by at most `grading` per unit of length along the edges
   // (Dijkstra): a tip's girth may widen faster than the mesh can grade
-  typedef std::pair<double, std::size_t> Entry;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  std::vector<vertex_descriptor> vertex_of(n);
-  for(vertex_descriptor v : vertices(tm)) vertex_of[get(vim, v)] = v;
+  Radius_queue queue;
   for(vertex_descriptor v : lowered) queue.push({radii[get(vim, v)], std::size_t(get(vim, v))});
-  while(!queue.empty()) {
-    const auto [r, i] = queue.top();
-    queue.pop();
-    if(r > radii[i]) continue;
-    const vertex_descriptor v = vertex_of[i];
-    if(halfedge(v, tm) == GT::null_halfedge()) continue;
-    for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm)) {
-      const vertex_descriptor w = source(h, tm);
-      const double candidate = r + settings.grading * dist(v, w);
-      if(candidate < radii[get(vim, w)]) {
-        radii[get(vim, w)] = candidate;
-        queue.push({candidate, std::size_t(get(vim, w))});
-      }
-    }
-  }
+  limit_radius_growth(radii, edge_adjacency(tm, vpm), settings.grading, queue);
   return radii;
 }
 
