@@ -38,6 +38,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <type_traits>
 #include <vector>
 
@@ -337,7 +338,77 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
     if(small) corners[to_v3(get(rvpm, v))] = std::move(sectors);
     else if(cuts < 2 && get(defect, v) > 0) tips[to_v3(get(rvpm, v))] = v;
   }
-  // the own angle at a vertex of tm on a tip: the cone angle at the mean length of its edges, over 3
+  // the largest smallest angle at v of a fan of triangles whose other vertices lie on the
+  // reference at distance `scale` from v: seen from v, the reference's intersection with that
+  // sphere is a loop of directions of length L (on the unit sphere); the angle at v of a triangle
+  // is the great-circle distance between the directions of its other two vertices, so a fan of k
+  // triangles has one of at most L / k, and for k = 3 (every two of the three vertices in one
+  // triangle) the best is found by trying the triples of directions along the loop
+  auto fan_bound = [&](ref_vertex v, double scale) {
+    const V3 o = to_v3(get(rvpm, v));
+    std::set<ref_face> near_faces;   // the faces with a vertex inside the ball, reached through such vertices
+    ++visit;
+    std::vector<ref_vertex> stack{v};
+    put(visited, v, visit);
+    while(!stack.empty()) {
+      const ref_vertex w = stack.back();
+      stack.pop_back();
+      for(auto h : CGAL::halfedges_around_target(halfedge(w, ref), ref)) {
+        if(!is_border(h, ref)) near_faces.insert(face(h, ref));
+        const ref_vertex x = source(h, ref);
+        if(get(visited, x) == visit) continue;
+        put(visited, x, visit);
+        const V3 d = sub(to_v3(get(rvpm, x)), o);
+        if(dot(d, d) < scale * scale) stack.push_back(x);
+      }
+    }
+    auto unit = [&](const V3& d) { const double l = std::sqrt(dot(d, d)); return V3{d[0] / l, d[1] / l, d[2] / l}; };
+    std::vector<V3> dirs;
+    double loop = 0;
+    for(ref_face f : near_faces) {
+      V3 p[3];
+      auto h = halfedge(f, ref);
+      for(int i = 0; i < 3; ++i, h = next(h, ref)) p[i] = to_v3(get(rvpm, target(h, ref)));
+      std::vector<V3> cross_points;
+      for(int i = 0; i < 3; ++i) {
+        V3 a = p[i], b = p[(i + 1) % 3];
+        V3 e = sub(a, o);
+        if((dot(e, e) < scale * scale) == (dot(sub(b, o), sub(b, o)) < scale * scale)) continue;
+        if(!(dot(e, e) < scale * scale)) { std::swap(a, b); e = sub(a, o); }   // a inside
+        const V3 d = sub(b, a);
+        const double dd = dot(d, d), ed = dot(e, d), c = dot(e, e) - scale * scale;
+        const double t = (-ed + std::sqrt(std::max(0.0, ed * ed - dd * c))) / dd;
+        cross_points.push_back(V3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]});
+      }
+      if(cross_points.size() != 2) continue;
+      const int m = 6;
+      V3 last{};
+      for(int k = 0; k < m; ++k) {
+        const double t = double(k) / (m - 1);
+        const V3 x = unit(sub(V3{cross_points[0][0] + t * (cross_points[1][0] - cross_points[0][0]),
+                                 cross_points[0][1] + t * (cross_points[1][1] - cross_points[0][1]),
+                                 cross_points[0][2] + t * (cross_points[1][2] - cross_points[0][2])}, o));
+        if(k > 0) loop += angle(last, x);
+        dirs.push_back(x);
+        last = x;
+      }
+    }
+    if(dirs.size() < 3) return 180.0;
+    const std::size_t stride = dirs.size() / 90 + 1;   // (at most 90 directions: 120,000 triples)
+    std::vector<V3> few;
+    for(std::size_t i = 0; i < dirs.size(); i += stride) few.push_back(dirs[i]);
+    double best = 0;
+    for(std::size_t i = 0; i < few.size(); ++i)
+      for(std::size_t j = i + 1; j < few.size(); ++j) {
+        const double ij = angle(few[i], few[j]);
+        if(ij <= best) continue;
+        for(std::size_t k = j + 1; k < few.size(); ++k)
+          best = std::max(best, std::min({ij, angle(few[j], few[k]), angle(few[i], few[k])}));
+      }
+    return std::max(best, loop / 4);
+  };
+  // the own angle at a vertex of tm on a tip: that bound at the mean length of its edges (when v
+  // is the pointiest vertex within it)
   auto tip_angle = [&](typename boost::graph_traits<TriangleMesh>::vertex_descriptor x, ref_vertex v) {
     double length = 0;
     std::size_t n = 0;
@@ -347,7 +418,8 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
       length += std::sqrt(dot(d, d));
       ++n;
     }
-    return n ? cone_angle(v, length / double(n)) / 3 : 180.0;
+    if(n == 0 || !(cone_angle(v, length / double(n)) < 360)) return 180.0;
+    return fan_bound(v, length / double(n));
   };
 
   std::map<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, double> tip_angles;

@@ -44,6 +44,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <set>
 #include <cmath>
 #include <iterator>
@@ -745,6 +746,13 @@ private:
   std::pair<double, double> smallest_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m,
                                                    const Point_3& at) const
   {
+    return smallest_angles_around(v, m, at, [](typename boost::graph_traits<Mesh>::vertex_descriptor) { return 1.0; });
+  }
+  // the same with the angles at each other vertex x of the triangles scaled by tip_scale(x)
+  template <class Mesh, class TipScale>
+  std::pair<double, double> smallest_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m,
+                                                   const Point_3& at, TipScale tip_scale) const
+  {
     auto vpm = get(CGAL::vertex_point, m);
     double worst = CGAL_PI, sum = 0;
     for(auto h : CGAL::halfedges_around_target(v, m)) {
@@ -752,7 +760,9 @@ private:
       const Point_3& a = get(vpm, source(h, m));
       const Point_3& b = get(vpm, target(next(h, m), m));
       if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return {-1, -1};
-      const double x = min_angle(a, at, b);
+      const double sa = tip_scale(source(h, m)), sb = tip_scale(target(next(h, m), m));
+      const double x = sa == 1 && sb == 1 ? min_angle(a, at, b)
+                                          : std::min({angle(at, a, b) * sa, angle(a, at, b), angle(a, b, at) * sb});
       worst = std::min(worst, x);
       sum += x;
     }
@@ -794,6 +804,27 @@ private:
       std::sort(todo.begin(), todo.end());
       todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     }
+    // a tip -- a fixed vertex on no feature curve whose angles sum to less than 180 degrees -- has
+    // triangles sharper than 60 degrees whatever its neighbours do: its angles count as they
+    // compare to a third of its angle sum, so that the neighbours raise their own angles (a cone
+    // tip of 83 degrees: its three triangles at best 27.7 degrees there, the other two angles of
+    // each then depend on the neighbours alone)
+    std::map<vertex_descriptor, double> tips;
+    std::set<vertex_descriptor> checked;
+    for(vertex_descriptor x : todo)
+      for(auto h : CGAL::halfedges_around_target(x, m)) {
+        const vertex_descriptor t = source(h, m);
+        if(!is_corner(t) || !checked.insert(t).second || is_border(t, m) || feature_degree(t, m, is_feature) != 0) continue;
+        double sum = 0;
+        for(auto g : CGAL::halfedges_around_target(t, m))
+          sum += angle(get(vpm, source(g, m)), get(vpm, t), get(vpm, target(next(g, m), m)));
+        if(sum > 0 && sum < CGAL_PI / 2) tips[t] = CGAL_PI / 2 / sum;
+      }
+    auto tip_scale = [&](vertex_descriptor x) {
+      if(tips.empty()) return 1.0;
+      const auto it = tips.find(x);
+      return it == tips.end() ? 1.0 : it->second;
+    };
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
     std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
     if(!todo.empty()) {
@@ -809,9 +840,9 @@ private:
       const int c = movability(v);
       const Point_3 start = get(vpm, v);
       Point_3 p = start;
-      const double floor = smallest_angles_around(v, m, p).first;
+      const double floor = smallest_angles_around(v, m, p, tip_scale).first;
       auto objective = [&](const Point_3& q) {
-        const auto [smallest, sum] = smallest_angles_around(v, m, q);
+        const auto [smallest, sum] = smallest_angles_around(v, m, q, tip_scale);
         if(!smoothing || smallest < 0) return smallest;
         return smallest < floor ? -1.0 : sum;
       };
