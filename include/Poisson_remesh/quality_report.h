@@ -19,7 +19,11 @@
 
 // CGAL's distance.h calls CGAL::midpoint with a qualified name: the kernel's global functions
 // must be declared before it is parsed, whatever the user included first.
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Kernel/global_functions.h>
+#include <CGAL/Kernel_traits.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
@@ -87,6 +91,11 @@ struct Quality_report
   /// there (see quality_report(tm, reference, np))
   std::optional<double> min_angle_away_from_sharp_corners;
   std::size_t number_of_angles_at_sharp_corners = 0;   ///< the angles left out of it
+  /// (when self-intersections are checked) the reference's own self-intersecting face pairs, and
+  /// those of tm not within two mean edge lengths (of tm) of them: where two sheets of the
+  /// reference cross, a mesh following it closely crosses too
+  std::optional<std::size_t> number_of_reference_self_intersecting_face_pairs;
+  std::optional<std::size_t> number_of_self_intersecting_face_pairs_away_from_reference_ones;
 };
 
 namespace internal {
@@ -247,9 +256,9 @@ void fill_valences(const TriangleMesh& tm, Report& r)
 // around a vertex with fewer (a cone tip: a closed surface has at least 3 triangles there). At a
 // tip of tm -- on a vertex v of the reference with fewer than two sharp edges that is the
 // pointiest (largest angle defect) within 0.9 s of it, s the mean length of the tip's edges in tm --
-// the sum is the cone angle at that scale: 360 degrees minus the angle defects of the reference's
-// vertices well inside it, within 0.9 s (Gauss-Bonnet: a mesh keeping the tip with edges that long turns around it by
-// that angle, whatever the reference's own triangles do at v).
+// the own angle is the best smallest angle at v of a fan of three triangles whose other vertices
+// lie on the reference at distance s from v (see fan_bound below: on a cone, 2 asin(sin(a) sin 60)
+// for a half-angle a, under a third of the cone angle 360 sin(a), which only a flat fan reaches).
 template <class TriangleMesh, class VPM, class ReferenceMesh>
 void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref, double sharp_angle, Quality_report& r)
 {
@@ -459,6 +468,52 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   r.min_angle_away_from_sharp_corners = worst;
 }
 
+// the reference's self-intersecting face pairs, and tm's that are not near them: a pair of tm is
+// near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
+// of the reference that cuts another
+template <class TriangleMesh, class VPM, class ReferenceMesh>
+void fill_self_intersections_away_from_reference_ones(const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref, Quality_report& r)
+{
+  typedef typename boost::graph_traits<ReferenceMesh>::face_descriptor ref_face;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+  typedef typename boost::property_traits<decltype(get_const_property_map(CGAL::vertex_point, ref))>::value_type Ref_point;
+  typedef typename CGAL::Kernel_traits<Ref_point>::Kernel RK;
+  std::vector<std::pair<ref_face, ref_face>> ref_pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(ref, std::back_inserter(ref_pairs));
+  r.number_of_reference_self_intersecting_face_pairs = ref_pairs.size();
+  if(ref_pairs.empty()) {
+    r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
+    return;
+  }
+  std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm));
+  std::vector<ref_face> crossing;
+  for(const auto& p : ref_pairs) { crossing.push_back(p.first); crossing.push_back(p.second); }
+  std::sort(crossing.begin(), crossing.end());
+  crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+  typedef CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh> Primitive;
+  CGAL::AABB_tree<CGAL::AABB_traits<RK, Primitive>> tree(crossing.begin(), crossing.end(), ref);
+  double length = 0;
+  std::size_t n = 0;
+  for(auto e : edges(tm)) {
+    length += std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, source(e, tm)), get(vpm, target(e, tm)))));
+    ++n;
+  }
+  const double reach = n ? 2 * length / double(n) : 0;
+  auto near = [&](face_descriptor f) {
+    double c[3] = {0, 0, 0};
+    for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
+      const auto& p = get(vpm, v);
+      c[0] += CGAL::to_double(p.x()) / 3; c[1] += CGAL::to_double(p.y()) / 3; c[2] += CGAL::to_double(p.z()) / 3;
+    }
+    return CGAL::to_double(tree.squared_distance(typename RK::Point_3(c[0], c[1], c[2]))) <= reach * reach;
+  };
+  std::size_t away = 0;
+  for(const auto& p : pairs)
+    if(!near(p.first) || !near(p.second)) ++away;
+  r.number_of_self_intersecting_face_pairs_away_from_reference_ones = away;
+}
+
 } // namespace internal
 
 /*!
@@ -511,10 +566,13 @@ Quality_report quality_report(const TriangleMesh& tm,
   Hausdorff estimate, relative to the reference's bounding-box diagonal; `sharp_angle` (degrees,
   default 60): the dihedral angle of the reference's sharp edges, for
   `min_angle_away_from_sharp_corners` (theta_min without the angles at corners of the reference
-  whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees -- the input's
-  own, or the cone angle at the scale of the tip's edges in tm, 360 degrees minus the reference's
-  angle defects within 0.9 times that scale, at a tip that is the pointiest there --, wedges between sharp edges
-  under 30 degrees; there no mesh keeping the corner reaches 30).
+  whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees, or -- at a
+  tip that is the pointiest within the scale of its edges in tm -- whose best fan of three
+  triangles with their other vertices on the reference at that distance has an angle under 30
+  at the tip (a cone of half-angle a: 2 asin(sin(a) sin 60 degrees)); wedges between sharp edges
+  under 30 degrees; there no mesh keeping the corner reaches 30). When self-intersections are
+  checked, also the reference's own self-intersecting pairs and tm's pairs away from them
+  (`number_of_self_intersecting_face_pairs_away_from_reference_ones`).
 */
 template <class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property,
@@ -536,6 +594,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
   r.hausdorff_absolute = h;
   r.hausdorff = diag > 0 ? h / diag : 0.0;
   internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
+  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, r);
   return r;
 }
 

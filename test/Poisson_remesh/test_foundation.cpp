@@ -223,8 +223,30 @@ TEST_CASE("quality report finds self-intersections and measures the Hausdorff di
     const std::size_t offset = s.points.size();
     for(auto p : t.points) s.points.push_back({p[0] + 0.5, p[1], p[2]});
     for(auto f : t.triangles) s.triangles.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-    const PR::Quality_report r = PR::quality_report(s.to_mesh<Mesh>());
+    const Mesh both = s.to_mesh<Mesh>();
+    const PR::Quality_report r = PR::quality_report(both);
     CHECK(r.number_of_self_intersecting_face_pairs > 0);
+    CHECK(!r.number_of_self_intersecting_face_pairs_away_from_reference_ones);   // (no reference)
+    // against itself, every crossing is one of the reference's own ...
+    const PR::Quality_report own = PR::quality_report(both, both);
+    REQUIRE(own.number_of_reference_self_intersecting_face_pairs);
+    CHECK(*own.number_of_reference_self_intersecting_face_pairs == r.number_of_self_intersecting_face_pairs);
+    CHECK(*own.number_of_self_intersecting_face_pairs_away_from_reference_ones == 0);
+    // ... and two more crossing each other far from them make crossings away from them
+    analytic::Soup u = s;
+    for(double x : {-5.0, -4.5}) {
+      const analytic::Soup w = analytic::sphere(16, 8);
+      const std::size_t o2 = u.points.size();
+      for(auto p : w.points) u.points.push_back({p[0] + x, p[1], p[2]});
+      for(auto f : w.triangles) u.triangles.push_back({f[0] + o2, f[1] + o2, f[2] + o2});
+    }
+    const PR::Quality_report three = PR::quality_report(u.to_mesh<Mesh>(), both);
+    CHECK(three.number_of_self_intersecting_face_pairs > r.number_of_self_intersecting_face_pairs);
+    CHECK(*three.number_of_self_intersecting_face_pairs_away_from_reference_ones > 0);
+    CHECK(*three.number_of_self_intersecting_face_pairs_away_from_reference_ones < three.number_of_self_intersecting_face_pairs);
+    // a mesh that does not cut itself has none, whatever its reference does
+    const PR::Quality_report one = PR::quality_report(analytic::sphere(16, 8).to_mesh<Mesh>(), both);
+    CHECK(*one.number_of_self_intersecting_face_pairs_away_from_reference_ones == 0);
   }
   SECTION("a translated copy is at the translation distance") {
     const Mesh a = analytic::plane(8, 8).to_mesh<Mesh>();

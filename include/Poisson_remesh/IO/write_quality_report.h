@@ -74,6 +74,8 @@ inline void write_quality_table(std::ostream& os, const Labelled_quality_reports
     {"genus", [](const Quality_report& r) { return std::to_string(r.genus); }},
     {"border edges", [&](const Quality_report& r) { return count(r.number_of_border_edges); }},
     {"min angle (deg)", [](const Quality_report& r) { return format_double(r.min_angle, 5); }},
+    {"min angle away from sharp corners", [](const Quality_report& r) {
+       return r.min_angle_away_from_sharp_corners ? format_double(*r.min_angle_away_from_sharp_corners, 5) : std::string("-"); }},
     {"mean min angle (deg)", [](const Quality_report& r) { return format_double(r.mean_min_angle, 5); }},
     {"max angle (deg)", [](const Quality_report& r) { return format_double(r.max_angle, 5); }},
     {"min angle < 30 deg (%)", [](const Quality_report& r) { return format_double(100 * r.share_min_angle_below_30, 4); }},
@@ -83,6 +85,8 @@ inline void write_quality_table(std::ostream& os, const Labelled_quality_reports
     {"degenerate faces", [&](const Quality_report& r) { return count(r.number_of_degenerate_faces); }},
     {"self-intersecting pairs", [&](const Quality_report& r) {
        return r.self_intersections_checked ? count(r.number_of_self_intersecting_face_pairs) : std::string("not checked"); }},
+    {"  away from the input's own", [&](const Quality_report& r) {
+       return r.number_of_self_intersecting_face_pairs_away_from_reference_ones ? count(*r.number_of_self_intersecting_face_pairs_away_from_reference_ones) : std::string("-"); }},
     {"Hausdorff / diagonal", [](const Quality_report& r) {
        return r.hausdorff ? format_double(*r.hausdorff, 4) : std::string("-"); }},
   };
@@ -136,6 +140,10 @@ inline std::string to_json(const Quality_report& r, const std::string& indent = 
      << in << "\"bbox_diagonal\": " << r.bbox_diagonal << ",\n";
   os << in << "\"self_intersecting_face_pairs\": ";
   if(r.self_intersections_checked) os << r.number_of_self_intersecting_face_pairs; else os << "null";
+  os << ",\n" << in << "\"self_intersecting_face_pairs_away_from_reference_ones\": ";
+  if(r.number_of_self_intersecting_face_pairs_away_from_reference_ones) os << *r.number_of_self_intersecting_face_pairs_away_from_reference_ones; else os << "null";
+  os << ",\n" << in << "\"min_angle_away_from_sharp_corners_deg\": ";
+  if(r.min_angle_away_from_sharp_corners) os << *r.min_angle_away_from_sharp_corners; else os << "null";
   os << ",\n" << in << "\"hausdorff_over_diagonal\": ";
   if(r.hausdorff) os << *r.hausdorff; else os << "null";
   os << ",\n" << in << "\"hausdorff_absolute\": ";
