@@ -108,10 +108,10 @@ static void run_row(const std::string& contender, const Contender& run, const st
     const PR::Quality_report r = PR::quality_report(output, input);
     os << "ok 1\ninput_vertices " << num_vertices(input) << "\ninput_faces " << num_faces(input) << "\ntarget " << target << "\nvertices " << r.number_of_vertices
        << "\nfaces " << r.number_of_faces << "\nmin_angle " << r.min_angle
-       << "\nmin_angle_away " << *r.min_angle_away_from_sharp_corners << "\nmean_min_angle " << r.mean_min_angle
+       << "\nmin_angle_away " << r.min_angle_away_from_sharp_corners.value_or(-1) << "\nmean_min_angle " << r.mean_min_angle
        << "\nbelow_30 " << r.share_min_angle_below_30 << "\nirregular " << r.irregular_share
        << "\nhausdorff " << (r.hausdorff ? *r.hausdorff : -1) << "\nself_intersections " << r.number_of_self_intersecting_face_pairs
-       << "\nself_intersections_away " << *r.number_of_self_intersecting_face_pairs_away_from_reference_ones
+       << "\nself_intersections_away " << double(r.number_of_self_intersecting_face_pairs_away_from_reference_ones.value_or(r.number_of_self_intersecting_face_pairs))
        << "\ngenus_kept " << (r.genus == in.genus && r.number_of_components == in.number_of_components ? 1 : 0)
        << "\nseconds " << seconds << "\npeak_mib " << peak << "\n";
   } catch(const std::exception& e) {
@@ -243,7 +243,7 @@ int main(int argc, char** argv)
   md << "| contender | mesh | input V | target V | V | θmin (°) | θmin away from sharp corners (°) | θ̄min (°) | <30° (%) | irregular (%) | Hausdorff (% diag) | self-int. pairs | away from the input's own | topology kept | seconds | peak MiB |\n"
      << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|\n";
   for(const Row& r : rows) {
-    if(!r.ok) { md << "| " << r.contender << " | " << r.mesh << " | failed: " << r.error << " |||||||||||||\n"; continue; }
+    if(!r.ok) { md << "| " << r.contender << " | " << r.mesh << " | failed: " << r.error << " ||||||||||||||\n"; continue; }
     md << "| " << r.contender << " | " << r.mesh << " | " << fmt(r.input_vertices, 0) << " | " << fmt(r.target, 0) << " | "
        << fmt(r.vertices, 0) << " | " << fmt(r.min_angle, 2) << " | " << fmt(r.min_angle_away, 2) << " | " << fmt(r.mean_min_angle, 2) << " | "
        << fmt(100 * r.below_30, 2) << " | " << fmt(100 * r.irregular, 1) << " | " << fmt(100 * r.hausdorff, 3) << " | "

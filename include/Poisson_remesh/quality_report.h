@@ -19,10 +19,10 @@
 
 // CGAL's distance.h calls CGAL::midpoint with a qualified name: the kernel's global functions
 // must be declared before it is parsed, whatever the user included first.
+#include <CGAL/Kernel/global_functions.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/Kernel/global_functions.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -403,7 +403,11 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
       }
     }
     if(dirs.size() < 3) return 180.0;
-    const std::size_t stride = dirs.size() / 90 + 1;   // (at most 90 directions: 120,000 triples)
+    // (in an order that does not depend on the faces' handles, duplicates of shared crossing
+    // points removed, then at most 90 directions: 120,000 triples)
+    std::sort(dirs.begin(), dirs.end());
+    dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
+    const std::size_t stride = dirs.size() / 90 + 1;
     std::vector<V3> few;
     for(std::size_t i = 0; i < dirs.size(); i += stride) few.push_back(dirs[i]);
     double best = 0;
@@ -414,6 +418,8 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
         for(std::size_t k = j + 1; k < few.size(); ++k)
           best = std::max(best, std::min({ij, angle(few[j], few[k]), angle(few[i], few[k])}));
       }
+    // (L / 4 bounds a fan of four triangles from above; it may not be reached, but a tip where it
+    // is 30 degrees or more is not one whose own angle is under 30)
     return std::max(best, loop / 4);
   };
   // the own angle at a vertex of tm on a tip: that bound at the mean length of its edges (when v
@@ -480,6 +486,8 @@ void fill_self_intersections_away_from_reference_ones(const TriangleMesh& tm, VP
   typedef typename CGAL::Kernel_traits<Ref_point>::Kernel RK;
   std::vector<std::pair<ref_face, ref_face>> ref_pairs;
   CGAL::Polygon_mesh_processing::self_intersections(ref, std::back_inserter(ref_pairs));
+  // (a degenerate face comes as the pair (f, f): no crossing of two sheets)
+  ref_pairs.erase(std::remove_if(ref_pairs.begin(), ref_pairs.end(), [](const auto& p) { return p.first == p.second; }), ref_pairs.end());
   r.number_of_reference_self_intersecting_face_pairs = ref_pairs.size();
   if(ref_pairs.empty()) {
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;

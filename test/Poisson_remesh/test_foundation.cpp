@@ -308,8 +308,9 @@ TEST_CASE("quality report leaves out only the angles at the reference's sharp co
     const Mesh m = t.to_mesh<Mesh>();
     const PR::Quality_report own = PR::quality_report(ref, ref), r = PR::quality_report(m, ref);
     // at the input's own scale (its ring at 0.1, where the cone angle is 96 degrees) three
-    // triangles at the apex could have 96 / 3 = 32 degrees only if flat: on the cone, the best is
-    // 2 asin(sin 16 sin 60) = 26.6 degrees, so the reference's own six apex angles (16) are left out
+    // triangles at the apex could have 96 / 3 = 32 degrees only if flat: on the cone (half-angle
+    // asin(96 / 360) = 15.5 degrees), the best is 2 asin(sin 15.5 sin 60) = 26.7 degrees, so the
+    // reference's own six apex angles (16 degrees each) are left out
     CHECK(own.number_of_angles_at_sharp_corners == 6);
     CHECK(r.min_angle < 25);
     CHECK(r.number_of_angles_at_sharp_corners == 3);     // the three apex angles

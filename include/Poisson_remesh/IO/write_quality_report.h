@@ -74,7 +74,7 @@ inline void write_quality_table(std::ostream& os, const Labelled_quality_reports
     {"genus", [](const Quality_report& r) { return std::to_string(r.genus); }},
     {"border edges", [&](const Quality_report& r) { return count(r.number_of_border_edges); }},
     {"min angle (deg)", [](const Quality_report& r) { return format_double(r.min_angle, 5); }},
-    {"min angle away from sharp corners", [](const Quality_report& r) {
+    {"min angle away from corners (deg)", [](const Quality_report& r) {
        return r.min_angle_away_from_sharp_corners ? format_double(*r.min_angle_away_from_sharp_corners, 5) : std::string("-"); }},
     {"mean min angle (deg)", [](const Quality_report& r) { return format_double(r.mean_min_angle, 5); }},
     {"max angle (deg)", [](const Quality_report& r) { return format_double(r.max_angle, 5); }},
@@ -140,6 +140,8 @@ inline std::string to_json(const Quality_report& r, const std::string& indent = 
      << in << "\"bbox_diagonal\": " << r.bbox_diagonal << ",\n";
   os << in << "\"self_intersecting_face_pairs\": ";
   if(r.self_intersections_checked) os << r.number_of_self_intersecting_face_pairs; else os << "null";
+  os << ",\n" << in << "\"reference_self_intersecting_face_pairs\": ";
+  if(r.number_of_reference_self_intersecting_face_pairs) os << *r.number_of_reference_self_intersecting_face_pairs; else os << "null";
   os << ",\n" << in << "\"self_intersecting_face_pairs_away_from_reference_ones\": ";
   if(r.number_of_self_intersecting_face_pairs_away_from_reference_ones) os << *r.number_of_self_intersecting_face_pairs_away_from_reference_ones; else os << "null";
   os << ",\n" << in << "\"min_angle_away_from_sharp_corners_deg\": ";

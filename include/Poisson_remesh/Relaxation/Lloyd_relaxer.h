@@ -20,7 +20,8 @@
 // The three alternate for `iterations` rounds (default 10; see Relaxation_settings). Then, beyond
 // the paper, slivers whose short edge no move can lengthen (pinned by corners or feature samples)
 // lose that edge by a guarded collapse onto its more constrained end (two corners too close are
-// merged), input vertices far from the mesh are inserted and pinned (fidelity insertions), and a
+// merged), input points far from the mesh (and the input points nearest the mesh's triangles and
+// edges that are far from the input) are inserted and pinned (fidelity insertions), and a
 // few rounds follow; at the very end the vertices of the triangles still under optimized_angle move
 // to raise their smallest angle (angle optimization), after a smoothing of all vertices and
 // regularity flips; last, the triangles still sharper than that get a flip, a vertex removal or
@@ -47,7 +48,9 @@
 #include <map>
 #include <set>
 #include <cmath>
+#include <tuple>
 #include <iterator>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -92,8 +95,9 @@ struct Relaxation_settings
   /// and once more after the angle optimization, whose moves may cut a crest again (new vertices
   /// there are followed by Delaunay flips and angle optimization rounds)
   bool final_fidelity_pass = true;
-  /// at most this share of the vertex count is inserted so, farthest first (a mesh much too
-  /// coarse for its input everywhere is not mended by pinned vertices)
+  /// at most this share of the vertex count is inserted so in one pass, farthest first, and as
+  /// many far edges split (a mesh much too coarse for its input everywhere is not mended by
+  /// pinned vertices)
   double max_deviation_insertions = 0.01;
   /// the sliver collapses may also merge two corners joined by the sliver's short edge
   bool merge_close_corners = true;
@@ -804,11 +808,11 @@ private:
       std::sort(todo.begin(), todo.end());
       todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
     }
-    // a tip -- a fixed vertex on no feature curve whose angles sum to less than 180 degrees -- has
-    // triangles sharper than 60 degrees whatever its neighbours do: its angles count as they
-    // compare to a third of its angle sum, so that the neighbours raise their own angles (a cone
-    // tip of 83 degrees: its three triangles at best 27.7 degrees there, the other two angles of
-    // each then depend on the neighbours alone)
+    // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
+    // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
+    // degrees over its angle sum (a third of the sum counts as 30), so that the neighbours raise
+    // their own angles (a cone tip of 83 degrees: its three triangles at best 27.7 degrees there,
+    // the other two angles of each then depend on the neighbours)
     std::map<vertex_descriptor, double> tips;
     std::set<vertex_descriptor> checked;
     for(vertex_descriptor x : todo)
@@ -1254,13 +1258,29 @@ private:
       const double d2 = CGAL::to_double(tree.squared_distance(p));
       if(d2 > tol * tol) far.push_back({d2, p});
     };
-    for(auto v : vertices(input_))
-      if(halfedge(v, input_) != boost::graph_traits<InputMesh>::null_halfedge()) check(get(in_vpm, v));
-    for(auto e : edges(input_))
-      check(CGAL::midpoint(get(in_vpm, source(e, input_)), get(in_vpm, target(e, input_))));
+    // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
+    // of its vertices is not queried)
+    auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), input_);
+    for(auto v : vertices(input_)) {
+      put(vertex_distance, v, std::numeric_limits<double>::infinity());
+      if(halfedge(v, input_) == boost::graph_traits<InputMesh>::null_halfedge()) continue;
+      const double d2 = CGAL::to_double(tree.squared_distance(get(in_vpm, v)));
+      put(vertex_distance, v, std::sqrt(d2));
+      if(d2 > tol * tol) far.push_back({d2, get(in_vpm, v)});
+    }
+    auto near_by_way_of = [&](const Point_3& x, auto v) {
+      return get(vertex_distance, v) + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, get(in_vpm, v)))) <= tol;
+    };
+    for(auto e : edges(input_)) {
+      const auto a = source(e, input_), b = target(e, input_);
+      const Point_3 x = CGAL::midpoint(get(in_vpm, a), get(in_vpm, b));
+      if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) check(x);
+    }
     for(auto f : faces(input_)) {
       const auto h = halfedge(f, input_);
-      check(CGAL::centroid(get(in_vpm, source(h, input_)), get(in_vpm, target(h, input_)), get(in_vpm, target(next(h, input_), input_))));
+      const auto a = source(h, input_), b = target(h, input_), c = target(next(h, input_), input_);
+      const Point_3 x = CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c));
+      if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) check(x);
     }
     // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
     // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
@@ -1269,7 +1289,8 @@ private:
       const Point_3 c = CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
       const Point_3 p = project_on_surface(c);
       const double d2 = CGAL::to_double(CGAL::squared_distance(c, p));
-      if(d2 > tol * tol) far.push_back({d2, p});
+      // (not when that input point is near the mesh elsewhere: the other side of a thin part)
+      if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
     }
     typedef typename GT::halfedge_descriptor halfedge_descriptor;
     typedef typename GT::vertex_descriptor vertex_descriptor;
@@ -1366,13 +1387,14 @@ private:
     // angle, elephant 35.0 -> 34.5 degrees at seed 0)
     std::sort(far_edges.begin(), far_edges.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
     std::set<vertex_descriptor> split_near;
+    std::size_t edge_splits = 0;
     for(const auto& [d2, p, a, b] : far_edges) {
-      if(mine.size() + done >= 2 * cap) break;
+      if(edge_splits >= cap) break;
       const auto [h, exists] = halfedge(a, b, m);
       if(!exists || split_near.count(a) || split_near.count(b)) continue;
       for(auto x : {h, opposite(h, m)})
         for(vertex_descriptor y : CGAL::vertices_around_face(x, m)) split_near.insert(y);
-      try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5);
+      if(try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5)) ++edge_splits;
     }
     stats.fidelity_insertions += done;
     return done;
