@@ -20,6 +20,7 @@
 // CGAL's distance.h calls CGAL::midpoint with a qualified name: the kernel's global functions
 // must be declared before it is parsed, whatever the user included first.
 #include <CGAL/Kernel/global_functions.h>
+#include <Poisson_remesh/Features/detect_features.h>   // (internal::Vertex_ball)
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -277,36 +278,23 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   CGAL::Polygon_mesh_processing::detect_sharp_edges(ref, sharp_angle, sharp);
   auto is_cut = [&](typename RGT::halfedge_descriptor h) { return is_border_edge(h, ref) || get(sharp, edge(h, ref)); };
 
-  // angle defects (degrees; 0 on borders and isolated vertices: filled with the sectors below),
-  // and the cone angle at `scale` of the tips
+  // angle defects (degrees; 0 on borders and isolated vertices: filled with the sectors below)
   auto defect = get(CGAL::dynamic_vertex_property_t<double>(), ref);
   for(ref_vertex v : vertices(ref)) put(defect, v, 0.0);
-  auto visited = get(CGAL::dynamic_vertex_property_t<std::size_t>(), ref);
-  for(ref_vertex v : vertices(ref)) put(visited, v, std::size_t(0));
-  std::size_t visit = 0;
-  // 360 minus the defects within `scale` of v, or 360 when v is not the pointiest there
-  auto cone_angle = [&](ref_vertex v, double scale) {
-    if(!(scale > 0) || !(get(defect, v) > 0)) return 360.0;
-    ++visit;
-    std::vector<ref_vertex> stack{v};
-    put(visited, v, visit);
-    const V3 o = to_v3(get(rvpm, v));
+  std::size_t index_bound = 0;
+  for(ref_vertex v : vertices(ref)) index_bound = std::max(index_bound, std::size_t(get(CGAL::get_initialized_vertex_index_map(ref), v)) + 1);
+  Vertex_ball<ReferenceMesh, decltype(rvpm)> ball(ref, rvpm, index_bound);
+  // v is the pointiest vertex within 0.9 `scale` of it (well inside), where the defects add up
+  // to more than 0
+  auto pointiest_tip = [&](ref_vertex v, double scale) {
+    if(!(scale > 0) || !(get(defect, v) > 0)) return false;
     double sum = 0;
-    while(!stack.empty()) {
-      const ref_vertex w = stack.back();
-      stack.pop_back();
-      const double dw = get(defect, w);
-      if(dw > get(defect, v)) return 360.0;
-      sum += dw;
-      for(auto h : CGAL::halfedges_around_target(halfedge(w, ref), ref)) {
-        const ref_vertex x = source(h, ref);
-        if(get(visited, x) == visit) continue;
-        put(visited, x, visit);
-        const V3 d = sub(to_v3(get(rvpm, x)), o);
-        if(dot(d, d) <= 0.81 * scale * scale) stack.push_back(x);   // (well inside: 0.9 scale)
-      }
-    }
-    return 360 - sum;
+    bool pointiest = true;
+    ball.visit(v, 0.9 * scale, [&](ref_vertex w, double) {
+      sum += get(defect, w);
+      if(get(defect, w) > get(defect, v)) pointiest = false;
+    });
+    return pointiest && sum > 0;
   };
 
   // the reference's vertices with a sector under 30 degrees, and the own angle of each face's sector there
@@ -356,21 +344,10 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   auto fan_bound = [&](ref_vertex v, double scale) {
     const V3 o = to_v3(get(rvpm, v));
     std::set<ref_face> near_faces;   // the faces with a vertex inside the ball, reached through such vertices
-    ++visit;
-    std::vector<ref_vertex> stack{v};
-    put(visited, v, visit);
-    while(!stack.empty()) {
-      const ref_vertex w = stack.back();
-      stack.pop_back();
-      for(auto h : CGAL::halfedges_around_target(halfedge(w, ref), ref)) {
+    ball.visit(v, scale, [&](ref_vertex w, double) {
+      for(auto h : CGAL::halfedges_around_target(halfedge(w, ref), ref))
         if(!is_border(h, ref)) near_faces.insert(face(h, ref));
-        const ref_vertex x = source(h, ref);
-        if(get(visited, x) == visit) continue;
-        put(visited, x, visit);
-        const V3 d = sub(to_v3(get(rvpm, x)), o);
-        if(dot(d, d) < scale * scale) stack.push_back(x);
-      }
-    }
+    });
     auto unit = [&](const V3& d) { const double l = std::sqrt(dot(d, d)); return V3{d[0] / l, d[1] / l, d[2] / l}; };
     std::vector<V3> dirs;
     double loop = 0;
@@ -433,7 +410,7 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
       length += std::sqrt(dot(d, d));
       ++n;
     }
-    if(n == 0 || !(cone_angle(v, length / double(n)) < 360)) return 180.0;
+    if(n == 0 || !pointiest_tip(v, length / double(n))) return 180.0;
     return fan_bound(v, length / double(n));
   };
 
@@ -474,11 +451,14 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   r.min_angle_away_from_sharp_corners = worst;
 }
 
-// the reference's self-intersecting face pairs, and tm's that are not near them: a pair of tm is
+// the reference's self-intersecting face pairs, and those of tm's (`pairs`) that are not near them: a pair of tm is
 // near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
 // of the reference that cuts another
 template <class TriangleMesh, class VPM, class ReferenceMesh>
-void fill_self_intersections_away_from_reference_ones(const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref, Quality_report& r)
+void fill_self_intersections_away_from_reference_ones(
+  const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref,
+  const std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor, typename boost::graph_traits<TriangleMesh>::face_descriptor>>& pairs,
+  Quality_report& r)
 {
   typedef typename boost::graph_traits<ReferenceMesh>::face_descriptor ref_face;
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
@@ -493,8 +473,6 @@ void fill_self_intersections_away_from_reference_ones(const TriangleMesh& tm, VP
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
     return;
   }
-  std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-  CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm));
   std::vector<ref_face> crossing;
   for(const auto& p : ref_pairs) { crossing.push_back(p.first); crossing.push_back(p.second); }
   std::sort(crossing.begin(), crossing.end());
@@ -522,22 +500,14 @@ void fill_self_intersections_away_from_reference_ones(const TriangleMesh& tm, VP
   r.number_of_self_intersecting_face_pairs_away_from_reference_ones = away;
 }
 
-} // namespace internal
-
-/*!
-  computes the quality figures of `tm`, a triangle mesh modelling `FaceListGraph`.
-
-  Named parameters:
-  - `vertex_point_map` (default `boost::get(CGAL::vertex_point, tm)`)
-  - `check_self_intersections` (bool, default true): count self-intersecting face pairs with
-    `CGAL::Polygon_mesh_processing::self_intersections()`
-  - `angle_histogram_bin_width` (degrees, default 1)
-*/
-template <class TriangleMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
-          class Base = CGAL::internal_np::No_property>
-Quality_report quality_report(const TriangleMesh& tm,
-                              const CGAL::Named_function_parameters<T, Tag, Base>& np = parameters::default_values())
+// quality_report(tm, np), and the self-intersecting face pairs in `pairs` (when checked and
+// `pairs` is given)
+template <class TriangleMesh, class NamedParameters>
+Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& np,
+                                 std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor,
+                                                       typename boost::graph_traits<TriangleMesh>::face_descriptor>>* pairs)
 {
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   using parameters::choose_parameter;
   using parameters::get_parameter;
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
@@ -554,15 +524,36 @@ Quality_report quality_report(const TriangleMesh& tm,
                                 CGAL::square(b.zmax() - b.zmin()));
   }
   if(check_si && !faces(tm).empty()) {
-    std::size_t pairs = 0;
-    typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+    std::size_t count = 0;
     CGAL::Polygon_mesh_processing::self_intersections(
-      tm, boost::make_function_output_iterator([&pairs](const std::pair<face_descriptor, face_descriptor>&) { ++pairs; }),
+      tm, boost::make_function_output_iterator([&](const std::pair<face_descriptor, face_descriptor>& fp) {
+        ++count;
+        if(pairs) pairs->push_back(fp);
+      }),
       CGAL::parameters::vertex_point_map(vpm));
     r.self_intersections_checked = true;
-    r.number_of_self_intersecting_face_pairs = pairs;
+    r.number_of_self_intersecting_face_pairs = count;
   }
   return r;
+}
+
+} // namespace internal
+
+/*!
+  computes the quality figures of `tm`, a triangle mesh modelling `FaceListGraph`.
+
+  Named parameters:
+  - `vertex_point_map` (default `boost::get(CGAL::vertex_point, tm)`)
+  - `check_self_intersections` (bool, default true): count self-intersecting face pairs with
+    `CGAL::Polygon_mesh_processing::self_intersections()`
+  - `angle_histogram_bin_width` (degrees, default 1)
+*/
+template <class TriangleMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
+          class Base = CGAL::internal_np::No_property>
+Quality_report quality_report(const TriangleMesh& tm,
+                              const CGAL::Named_function_parameters<T, Tag, Base>& np = parameters::default_values())
+{
+  return internal::quality_report_of(tm, np, nullptr);
 }
 
 /*!
@@ -590,7 +581,9 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  Quality_report r = quality_report(tm, np);
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+  std::vector<std::pair<face_descriptor, face_descriptor>> pairs;   // (tm's self-intersections)
+  Quality_report r = internal::quality_report_of(tm, np, &pairs);
   if(faces(tm).empty() || faces(reference).empty()) return r;
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
   const double rel_bound = choose_parameter(get_parameter(np, internal_np::hausdorff_relative_error_bound), 1e-4);
@@ -602,7 +595,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
   r.hausdorff_absolute = h;
   r.hausdorff = diag > 0 ? h / diag : 0.0;
   internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
-  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, r);
+  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, pairs, r);
   return r;
 }
 

@@ -336,7 +336,6 @@ public:
     if(s.collapse_slivers) changed += collapse_pass(mesh, is_feature, is_corner, s, stats);
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.max_deviation > 0) changed += fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned);
-    std::sort(pinned.begin(), pinned.end());
     if(changed > 0)
       for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) {
         lloyd_pass(mesh, is_feature, is_fixed, stats);
@@ -345,7 +344,6 @@ public:
       }
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.max_deviation > 0 && fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned) > 0) {
-        std::sort(pinned.begin(), pinned.end());
         if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
         if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
       }
@@ -366,7 +364,6 @@ public:
     // the angle moves may cut a crest again: its input vertices are inserted there too
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.final_fidelity_pass && s.max_deviation > 0 && fidelity_pass(mesh, is_feature, new_vertex, s, stats, pinned) > 0) {
-        std::sort(pinned.begin(), pinned.end());
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
         optimize_angles();
       }
@@ -1239,7 +1236,7 @@ private:
 
   template <class Mesh, class IsFeatureEdge, class NewVertex>
   std::size_t fidelity_pass(Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Relaxation_settings& s, Relaxation_statistics& stats,
-                            std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added) const
+                            std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added) const   // (kept sorted)
   {
     typedef boost::graph_traits<Mesh> GT;
     typedef typename GT::face_descriptor face_descriptor;
@@ -1257,16 +1254,14 @@ private:
     auto check = [&](const Point_3& p) {
       const double d2 = CGAL::to_double(tree.squared_distance(p));
       if(d2 > tol * tol) far.push_back({d2, p});
+      return d2;
     };
     // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
     // of its vertices is not queried)
     auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), input_);
     for(auto v : vertices(input_)) {
       put(vertex_distance, v, std::numeric_limits<double>::infinity());
-      if(halfedge(v, input_) == boost::graph_traits<InputMesh>::null_halfedge()) continue;
-      const double d2 = CGAL::to_double(tree.squared_distance(get(in_vpm, v)));
-      put(vertex_distance, v, std::sqrt(d2));
-      if(d2 > tol * tol) far.push_back({d2, get(in_vpm, v)});
+      if(halfedge(v, input_) != boost::graph_traits<InputMesh>::null_halfedge()) put(vertex_distance, v, std::sqrt(check(get(in_vpm, v))));
     }
     auto near_by_way_of = [&](const Point_3& x, auto v) {
       return get(vertex_distance, v) + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, get(in_vpm, v)))) <= tol;
@@ -1284,11 +1279,14 @@ private:
     }
     // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
     // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
+    // (the input point nearest c, and its squared distance to c)
+    auto nearest_on_input = [&](const Point_3& c) {
+      const Point_3 p = project_on_surface(c);
+      return std::make_pair(CGAL::to_double(CGAL::squared_distance(c, p)), p);
+    };
     for(face_descriptor f : faces(m)) {
       const auto h = halfedge(f, m);
-      const Point_3 c = CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
-      const Point_3 p = project_on_surface(c);
-      const double d2 = CGAL::to_double(CGAL::squared_distance(c, p));
+      const auto [d2, p] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))));
       // (not when that input point is near the mesh elsewhere: the other side of a thin part)
       if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
     }
@@ -1298,9 +1296,7 @@ private:
     for(auto e : edges(m)) {
       const halfedge_descriptor h = halfedge(e, m);
       if(is_border_edge(h, m) || is_feature(e)) continue;
-      const Point_3 c = CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m)));
-      const Point_3 p = project_on_surface(c);
-      const double d2 = CGAL::to_double(CGAL::squared_distance(c, p));
+      const auto [d2, p] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))));
       if(d2 > tol * tol) far_edges.push_back({d2, p, source(h, m), target(h, m)});
     }
     if(far.empty() && far_edges.empty()) return 0;
@@ -1396,6 +1392,7 @@ private:
         for(vertex_descriptor y : CGAL::vertices_around_face(x, m)) split_near.insert(y);
       if(try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5)) ++edge_splits;
     }
+    std::sort(added.begin(), added.end());   // (the caller looks its pinned vertices up)
     stats.fidelity_insertions += done;
     return done;
   }
