@@ -137,10 +137,14 @@ TEST_CASE("cow: its horn tips and its input's own crossings aside, the floor hol
   // degrees at best, and the quality report leaves them out; the angle optimization weights the
   // tips' angles so that their neighbours raise theirs (29.13 degrees beside a tip at seed 6
   // without it). Its input cuts itself at 101 face pairs (the tail through the body): every
-  // crossing of the output lies there.
+  // crossing of the output lies there. At seed 1, two pinned vertices of the fidelity pass on a
+  // ridge beside a horn held two triangles at 29.7 degrees until they could move a little at the
+  // end (the pinned vertices' polish).
+  const unsigned int seed = GENERATE(6u, 1u);
+  CAPTURE(seed);
   Mesh in, out;
   PR::read_surface_mesh(test_support::data_mesh("meshes/cow.off"), in);
-  PR::poisson_remesh(in, out, PR::parameters::random_seed(6u));
+  PR::poisson_remesh(in, out, PR::parameters::random_seed(seed));
   const PR::Quality_report b = PR::quality_report(out, in);
   REQUIRE(b.min_angle_away_from_sharp_corners);
   CHECK(b.min_angle < 30);                                   // the tips ...

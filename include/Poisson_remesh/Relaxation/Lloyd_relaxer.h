@@ -25,7 +25,8 @@
 // few rounds follow; at the very end the vertices of the triangles still under optimized_angle move
 // to raise their smallest angle (angle optimization), after a smoothing of all vertices and
 // regularity flips; last, the triangles still sharper than that get a flip, a vertex removal or
-// a vertex insertion beside them (refinement), and the crossings left from the tessellation and
+// a vertex insertion beside them (refinement), the pinned vertices still at such triangles move
+// a little (a quarter of the fidelity tolerance at most), and the crossings left from the tessellation and
 // the Lloyd passes get vertex moves and flips that leave fewer of them (untangling). Moves and
 // insertions that make the mesh cut itself anew are taken back.
 
@@ -321,6 +322,12 @@ public:
     typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
     std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity pass stay where they are put
     auto is_fixed = [&](vertex_descriptor v) { return is_corner(v) || std::binary_search(pinned.begin(), pinned.end(), v); };
+    // (but near a sliver, they may move a little from there: see angle_pass)
+    std::map<vertex_descriptor, Point_3> anchors;
+    auto pin_anchor = [&](vertex_descriptor v) -> const Point_3* {
+      if(!std::binary_search(pinned.begin(), pinned.end(), v)) return nullptr;
+      return &anchors.emplace(v, get(get(CGAL::vertex_point, mesh), v)).first->second;
+    };
     Relaxation_statistics stats;
     // the angle optimization rounds, each followed by Delaunay flips
     auto optimize_angles = [&] {
@@ -379,6 +386,10 @@ public:
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
         optimize_angles();
       }
+    // then the vertices of the fidelity pass still at such triangles move a little (see angle_pass)
+    if(!pinned.empty())
+      for(unsigned int it = 0; it < s.angle_rounds; ++it)
+        if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest, pin_anchor, true) == 0) break;
     for(unsigned int round = 0; round < s.untangle_rounds; ++round)
       if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
     return stats;
@@ -786,6 +797,16 @@ private:
   std::size_t angle_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
                          Relaxation_statistics& stats, Angle_goal goal) const
   {
+    return angle_pass(m, is_feature, is_corner, s, stats, goal, [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const Point_3* { return nullptr; }, false);
+  }
+  // the same; with `pinned_only` (Angle_goal::smallest), only the vertices of the fidelity pass
+  // (fixed for is_corner) at a triangle sharper than sliver_angle move, by a quarter of the
+  // fidelity tolerance at most from where they were put, `pin_anchor(x)` (nullptr for the others):
+  // they still hold the mesh near the input
+  template <class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
+  std::size_t angle_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
+                         Relaxation_statistics& stats, Angle_goal goal, PinAnchor pin_anchor, bool pinned_only) const
+  {
     typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
     auto vpm = get(CGAL::vertex_point, m);
     const bool smoothing = goal == Angle_goal::sum_of_smallest;
@@ -793,7 +814,11 @@ private:
     std::vector<vertex_descriptor> todo;
     // a feature vertex with one feature edge (the output's edge along its curve is a chord too far
     // from the curve to count) slides along the curve too when it is at a sliver
+    const double pin_reach = 0.25 * s.max_deviation * diagonal_, sliver = s.sliver_angle * CGAL_PI / 180;
     auto movability = [&](vertex_descriptor x) {
+      if(pinned_only)
+        return pin_reach > 0 && pin_anchor(x) != nullptr && feature_degree(x, m, is_feature) == 0 && !is_border(x, m) &&
+               smallest_angles_around(x, m, get(vpm, x)).first < sliver ? 0 : 2;
       const int c = constraint(x, m, is_feature, is_corner);
       return !smoothing && c == 2 && !is_corner(x) && feature_degree(x, m, is_feature) == 1 ? 1 : c;
     };
@@ -843,6 +868,7 @@ private:
     std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
     for(vertex_descriptor v : todo) {
       const int c = movability(v);
+      const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
       const Point_3 start = get(vpm, v);
       Point_3 p = start;
       const double floor = smallest_angles_around(v, m, p, tip_scale).first;
@@ -896,6 +922,7 @@ private:
           const Point_3 q = in_plane ? t : c == 0 ? project_on_surface(t, p) : project_on_features(t, p);
           if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
           if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
+          if(anchor != nullptr && CGAL::to_double(CGAL::squared_distance(q, *anchor)) > pin_reach * pin_reach) continue;
           const double a = objective(q);
           if(a > best_here + 1e-9) { best_here = a; best_q = q; }
         }
