@@ -124,8 +124,9 @@ struct Relaxation_settings
   /// (beyond the paper) rounds of refinement at the very end: a triangle still sharper than
   /// `sliver_angle` (its vertices could not move enough: corners, feature samples) gets the best
   /// of three local changes when it beats the old triangles' smallest angle by a degree: a flip of
-  /// one of its edges; the removal of a free vertex of degree 3 of it (when the vertex is within a
-  /// quarter of max_deviation of the new triangle); or a new vertex on one of the two edges at its
+  /// one of its edges; the removal of a vertex of degree 3 of it off the features, free or pinned by
+  /// the fidelity pass (when the vertex is within half of max_deviation of the new triangle); or a
+  /// new vertex on one of the two edges at its
   /// smallest angle, placed on the input (on the features for a feature edge) where the four new
   /// triangles have the largest smallest angle -- the small angle's wedge is shared with the
   /// neighbour's angle, as Ruppert's refinement does. Changes that make the mesh cut itself are
@@ -388,7 +389,7 @@ public:
     // removed or inserted)
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       for(unsigned int round = 0; round < s.refinement_rounds; ++round) {
-        if(refinement_pass(mesh, is_feature, is_fixed, new_vertex, s, stats) == 0) break;
+        if(refinement_pass(mesh, is_feature, is_corner, new_vertex, s, stats, pinned) == 0) break;
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
         optimize_angles();
       }
@@ -1079,8 +1080,9 @@ private:
 
   // a vertex on an edge of each triangle sharper than sliver_angle (see refinement_rounds)
   template <class Mesh, class IsFeatureEdge, class IsCorner, class NewVertex>
-  std::size_t refinement_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, NewVertex new_vertex, const Relaxation_settings& s,
-                              Relaxation_statistics& stats) const
+  std::size_t refinement_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, NewVertex new_vertex, const Relaxation_settings& s,
+                              Relaxation_statistics& stats,
+                              std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& pinned) const   // (sorted)
   {
     typedef boost::graph_traits<Mesh> GT;
     typedef typename GT::vertex_descriptor vertex_descriptor;
@@ -1125,10 +1127,11 @@ private:
             if(value > old + gain && value - old > best.gain) best = {value - old, h, Point_3(), false, Operation::flip, {f, face(opposite(h, m), m)}};
           }
         }
-        // removal of target(h), a free vertex of degree 3: its three triangles become one
+        // removal of target(h), a vertex of degree 3 off the features: its three triangles become
+        // one (a pinned vertex of the fidelity pass too: the new triangle passes near it, see below)
         const vertex_descriptor x = target(h, m);
-        // (constraint 0: no corner, no feature or border edge; is_fixed: no pinned vertex either)
-        if(degree(x, m) == 3 && !is_fixed(x) && constraint(x, m, is_feature, is_fixed) == 0) {
+        // (constraint 0: no corner, no feature or border edge)
+        if(degree(x, m) == 3 && constraint(x, m, is_feature, is_corner) == 0) {
           double old = CGAL_PI;
           Vector_3 n(0, 0, 0);
           std::vector<face_descriptor> star;
@@ -1152,8 +1155,9 @@ private:
           const Point_3 &P = get(vpm, source(link, m)), &Q = get(vpm, target(link, m));
           const Point_3& third = get(vpm, target(next(opposite(next(link, m), m), m), m));
           if(closed) continue;
-          // (and the removed vertex is close to the new triangle: a tip is not cut off)
-          const double tol = (s.max_deviation > 0 ? 0.25 * s.max_deviation : 0.002) * diagonal_;
+          // (and the removed vertex is close to the new triangle, within half the fidelity tolerance:
+          // a tip is not cut off; a quarter kept cow at seed 5 at 29.9 degrees beside a horn tip)
+          const double tol = (s.max_deviation > 0 ? 0.5 * s.max_deviation : 0.002) * diagonal_;
           if(cos_between(normal(P, Q, third), n) > 0.5 &&
              CGAL::to_double(CGAL::squared_distance(get(vpm, x), typename GeomTraits::Triangle_3(P, Q, third))) <= tol * tol) {
             const double value = min_angle(P, Q, third);
@@ -1224,7 +1228,7 @@ private:
     struct Inserted { vertex_descriptor v; bool on_feature; vertex_descriptor a, b; };   // on the old edge (a, b)
     std::vector<Inserted> mine;
     std::vector<halfedge_descriptor> flipped;
-    struct Removed { halfedge_descriptor h; Point_3 at; };   // a halfedge of the new triangle, where the vertex was
+    struct Removed { halfedge_descriptor h; Point_3 at; bool pinned; };   // a halfedge of the new triangle, where the vertex was, pinned
     std::vector<Removed> removed;
     // (the removals last: the faces they free are not reused by a split of this pass, which would
     // pair them with the old faces' intersections in `before`)
@@ -1245,8 +1249,12 @@ private:
         continue;
       }
       if(c.op == Operation::remove) {
-        const Point_3 at = get(vpm, target(c.h, m));
-        removed.push_back({CGAL::Euler::remove_center_vertex(halfedge(target(c.h, m), m), m), at});
+        const vertex_descriptor x = target(c.h, m);
+        const Point_3 at = get(vpm, x);
+        const auto it = std::lower_bound(pinned.begin(), pinned.end(), x);
+        const bool was_pinned = it != pinned.end() && *it == x;
+        if(was_pinned) pinned.erase(it);
+        removed.push_back({CGAL::Euler::remove_center_vertex(halfedge(x, m), m), at, was_pinned});
         continue;
       }
       const vertex_descriptor a = source(c.h, m), b = target(c.h, m);
@@ -1277,6 +1285,7 @@ private:
         const vertex_descriptor v = target(CGAL::Euler::add_center_vertex(r.h, m), m);   // a new descriptor
         put(vpm, v, r.at);
         new_vertex(v, false);
+        if(r.pinned) pinned.insert(std::lower_bound(pinned.begin(), pinned.end(), v), v);
         ++stats.refused_moves;
       } else {
         ++changed;
