@@ -25,11 +25,11 @@
 // few rounds follow; at the very end the vertices of the triangles still under optimized_angle move
 // to raise their smallest angle (angle optimization), after a smoothing of all vertices and
 // regularity flips; last, the triangles still sharper than that get a flip, a vertex removal or
-// a vertex insertion beside them (refinement), a last round of regularity flips that keep the
-// smallest angle, the pinned vertices still at such triangles move
-// a little (a quarter of the fidelity tolerance at most), and the crossings left from the tessellation and
-// the Lloyd passes get vertex moves and flips that leave fewer of them (untangling). Moves and
-// insertions that make the mesh cut itself anew are taken back.
+// a vertex insertion beside them (refinement), a last round of regularity flips keeps the
+// smallest angle, the pinned vertices still at such triangles move a little (a quarter of the
+// fidelity tolerance at most), and the crossings left from the tessellation and the Lloyd passes
+// get vertex moves and flips that leave fewer of them (untangling). Moves and insertions that
+// make the mesh cut itself anew are taken back.
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -126,12 +126,11 @@ struct Relaxation_settings
   /// of three local changes when it beats the old triangles' smallest angle by a degree: a flip of
   /// one of its edges; the removal of a vertex of degree 3 of it off the features, free or pinned by
   /// the fidelity pass (when the vertex is within half of max_deviation of the new triangle); or a
-  /// new vertex on one of the two edges at its
-  /// smallest angle, placed on the input (on the features for a feature edge) where the four new
-  /// triangles have the largest smallest angle -- the small angle's wedge is shared with the
-  /// neighbour's angle, as Ruppert's refinement does. Changes that make the mesh cut itself are
-  /// taken back; Delaunay flips and the angle optimization follow. 0 disables. Needs the
-  /// new-vertex callback of relax().
+  /// new vertex on one of the two edges at its smallest angle, placed on the input (on the
+  /// features for a feature edge) where the four new triangles have the largest smallest angle --
+  /// the small angle's wedge is shared with the neighbour's angle, as Ruppert's refinement does.
+  /// Changes that make the mesh cut itself are taken back; Delaunay flips and the angle
+  /// optimization follow. 0 disables. Needs the new-vertex callback of relax().
   unsigned int refinement_rounds = 3;
   /// (beyond the paper) rounds of regularity flips after the smoothing: a flip is made when fewer
   /// of its four vertices are irregular after it and both new triangles keep their smallest angle
