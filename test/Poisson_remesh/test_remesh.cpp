@@ -139,8 +139,10 @@ TEST_CASE("cow: its horn tips and its input's own crossings aside, the floor hol
   // without it). Its input cuts itself at 101 face pairs (the tail through the body): every
   // crossing of the output lies there. At seed 1, two pinned vertices of the fidelity pass on a
   // ridge beside a horn held two triangles at 29.7 degrees until they could move a little at the
-  // end (the pinned vertices' polish).
-  const unsigned int seed = GENERATE(6u, 1u);
+  // end (the pinned vertices' polish). At seed 0, a triangle of 25.3 degrees on the tail where it
+  // runs through the body: the angle moves there made crossings with the body, new ones, and were
+  // taken back; crossings near the input's own no longer count as new.
+  const unsigned int seed = GENERATE(6u, 1u, 0u);
   CAPTURE(seed);
   Mesh in, out;
   PR::read_surface_mesh(test_support::data_mesh("meshes/cow.off"), in);

@@ -29,7 +29,8 @@
 // smallest angle, the pinned vertices still at such triangles move a little (a quarter of the
 // fidelity tolerance at most), and the crossings left from the tessellation and the Lloyd passes
 // get vertex moves and flips that leave fewer of them (untangling). Moves and insertions that
-// make the mesh cut itself anew are taken back.
+// make the mesh cut itself anew are taken back (not for a crossing near the input's own: an
+// input that cuts itself, cow's tail through its body).
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -785,9 +786,41 @@ private:
   {
     for(const auto& fp : internal::intersecting_pairs_near(m, changed)) {
       if(std::binary_search(before.begin(), before.end(), fp)) continue;
+      if(near_input_crossing(fp.first, m) && near_input_crossing(fp.second, m)) continue;
       for(auto face : {fp.first, fp.second})
         for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
     }
+  }
+
+  // whether face f of m lies within two of its longest edge's lengths of a face of the input that
+  // cuts the input (cow's tail runs through its body): the mesh follows the input there, and a
+  // crossing of it is the input's own (the quality report leaves those out the same way)
+  template <class Mesh>
+  bool near_input_crossing(typename boost::graph_traits<Mesh>::face_descriptor f, const Mesh& m) const
+  {
+    if(!input_crossings_known_) {
+      input_crossings_known_ = true;
+      const auto pairs = internal::intersecting_pairs(input_);
+      const auto vpm = get(CGAL::vertex_point, input_);
+      std::vector<typename boost::graph_traits<InputMesh>::face_descriptor> crossing;
+      for(const auto& fp : pairs) { crossing.push_back(fp.first); crossing.push_back(fp.second); }
+      std::sort(crossing.begin(), crossing.end());
+      crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+      for(auto g : crossing) {
+        const auto h = halfedge(g, input_);
+        input_crossings_.push_back(CGAL::centroid(get(vpm, source(h, input_)), get(vpm, target(h, input_)), get(vpm, target(next(h, input_), input_))));
+      }
+    }
+    if(input_crossings_.empty()) return false;
+    const auto vpm = get(CGAL::vertex_point, m);
+    const auto h = halfedge(f, m);
+    const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
+    const double reach2 = 4 * std::max({CGAL::to_double(CGAL::squared_distance(a, b)), CGAL::to_double(CGAL::squared_distance(b, c)),
+                                        CGAL::to_double(CGAL::squared_distance(c, a))});
+    const Point_3 x = CGAL::centroid(a, b, c);
+    for(const Point_3& p : input_crossings_)
+      if(CGAL::to_double(CGAL::squared_distance(p, x)) <= reach2) return true;
+    return false;
   }
 
   // the smallest angle of the triangles around v with v at `at`, and the sum of their smallest
@@ -1680,6 +1713,10 @@ private:
   const InputMesh& input_;
   double diagonal_ = 0;
   Face_tree faces_;
+  // the centroids of the input's faces that cut another of its faces, found the first time a new
+  // crossing of the mesh is met (see near_input_crossing)
+  mutable bool input_crossings_known_ = false;
+  mutable std::vector<Point_3> input_crossings_;
   std::vector<Segment_3> segments_;
   Segment_tree segment_tree_;
 };
