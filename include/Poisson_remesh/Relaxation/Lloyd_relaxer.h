@@ -28,7 +28,7 @@
 // a vertex insertion beside them (refinement), a last round of regularity flips keeps the
 // smallest angle, the pinned vertices still at such triangles move a little (a quarter of the
 // fidelity tolerance at most), and the crossings left from the tessellation and the Lloyd passes
-// get vertex moves and flips that leave fewer of them (untangling). Moves and insertions that
+// get vertex moves, flips and collapses that leave fewer of them (untangling). Moves and insertions that
 // make the mesh cut itself anew are taken back (not for a crossing near the input's own: an
 // input that cuts itself, cow's tail through its body).
 
@@ -45,6 +45,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
 
 #include <algorithm>
 #include <array>
@@ -154,6 +155,9 @@ struct Relaxation_settings
   /// an edge of a crossing face flipped, when fewer crossing pairs involve the faces it changes and
   /// their smallest angle stays over `untangle_min_angle` (or what it was); 0 disables
   unsigned int untangle_rounds = 3;
+  /// (with untangle_rounds) the smallest angle the triangles of a collapse of the untangling keep
+  /// (degrees; 0: no collapse)
+  double untangle_collapse_min_angle = 15;
   double untangle_min_angle = 30;
   /// (beyond the paper) a Lloyd move that would make one of the vertex's triangles sharper than
   /// this (degrees) and sharper than they are goes half the way; if that still does, it is
@@ -387,12 +391,15 @@ public:
       }
     // and where the angles are still too small, the connectivity changes there (a flip, a vertex
     // removed or inserted)
-    if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
-      for(unsigned int round = 0; round < s.refinement_rounds; ++round) {
-        if(refinement_pass(mesh, is_feature, is_corner, new_vertex, s, stats, pinned) == 0) break;
-        if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
-        optimize_angles();
-      }
+    auto refine = [&] {
+      if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
+        for(unsigned int round = 0; round < s.refinement_rounds; ++round) {
+          if(refinement_pass(mesh, is_feature, is_corner, new_vertex, s, stats, pinned) == 0) break;
+          if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
+          optimize_angles();
+        }
+    };
+    refine();
     // a last round of regularity flips whose triangles all keep final_regularity_min_angle; all
     // taken back if one makes the mesh cut itself anew
     if(s.final_regularity_min_angle > 0) {
@@ -424,8 +431,15 @@ public:
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_rounds; ++it)
         if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest, pin_anchor, true) == 0) break;
+    std::size_t collapses = 0;
     for(unsigned int round = 0; round < s.untangle_rounds; ++round)
-      if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
+      if(untangle_pass(mesh, is_feature, is_fixed, s, stats, s.untangle_collapse_min_angle > 0 ? &collapses : nullptr) == 0) break;
+    if(collapses > 0) {   // (the collapsed vertices' triangles: their angles optimized again)
+      optimize_angles();
+      refine();
+      for(unsigned int round = 0; round < s.untangle_rounds; ++round)
+        if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
+    }
     return stats;
   }
 
@@ -1507,7 +1521,7 @@ private:
   // see Relaxation_settings::untangle_rounds; returns the number of changes made
   template <class Mesh, class IsFeatureEdge, class IsCorner>
   std::size_t untangle_pass(Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, const Relaxation_settings& s,
-                            Relaxation_statistics& stats) const
+                            Relaxation_statistics& stats, std::size_t* collapses = nullptr) const
   {
     typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
@@ -1623,6 +1637,66 @@ private:
         CGAL::Euler::flip_edge(h, m);
         std::vector<face_descriptor> back = {face(h, m), face(opposite(h, m), m)};
         refresh(back);
+      }
+    }
+    // (with `collapses`) a free vertex shared by two faces still crossing -- its fan folded over on
+    // a part thinner than the triangles, dino's claw -- goes into a free neighbour, which keeps
+    // its place, when the triangles around it cross fewer others and keep untangle_collapse_min_angle;
+    // tried on a copy of the mesh; the caller optimizes the angles there again
+    if(collapses != nullptr) {
+      typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+      pairs = internal::intersecting_pairs(m);
+      std::vector<vertex_descriptor> shared;
+      for(const auto& fp : pairs)
+        for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(fp.first, m), m))
+          for(vertex_descriptor y : CGAL::vertices_around_face(halfedge(fp.second, m), m))
+            if(x == y) shared.push_back(x);
+      std::sort(shared.begin(), shared.end());
+      shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+      const double collapse_floor = s.untangle_collapse_min_angle * CGAL_PI / 180;
+      std::set<vertex_descriptor> gone;
+      for(vertex_descriptor x : shared) {
+        if(gone.count(x) || constraint(x, m, is_feature, is_fixed) != 0) continue;
+        // (the crossings of the faces around x and a neighbour, before and after)
+        auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around) {
+          const auto fs = internal::faces_around(g, around);
+          std::size_t n = 0;
+          for(const auto& fp : internal::intersecting_pairs_near(g, fs))
+            if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+          return n;
+        };
+        halfedge_descriptor best_h = boost::graph_traits<Mesh>::null_halfedge();
+        std::size_t best_gain = 0;
+        for(halfedge_descriptor h : CGAL::halfedges_around_target(x, m)) {   // h: y -> x
+          const vertex_descriptor y = source(h, m);
+          if(gone.count(y) || constraint(y, m, is_feature, is_fixed) != 0 || !CGAL::Euler::does_satisfy_link_condition(edge(h, m), m)) continue;
+          std::vector<vertex_descriptor> xy = {x, y};
+          std::sort(xy.begin(), xy.end());
+          const std::size_t before = crossings_near(m, xy);
+          if(before == 0) continue;
+          Mesh copy;
+          std::map<halfedge_descriptor, typename boost::graph_traits<Mesh>::halfedge_descriptor> h2h;
+          CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
+          const Point_3 at = get(vpm, y);
+          const auto z = CGAL::Euler::collapse_edge(edge(h2h[h], copy), copy);
+          put(get(CGAL::vertex_point, copy), z, at);
+          double worst = CGAL_PI;
+          for(auto g : CGAL::halfedges_around_target(z, copy))
+            if(!is_border(g, copy))
+              worst = std::min(worst, min_angle(get(get(CGAL::vertex_point, copy), source(g, copy)), at, get(get(CGAL::vertex_point, copy), target(next(g, copy), copy))));
+          if(!(worst >= collapse_floor)) continue;
+          const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z));
+          if(after < before && before - after > best_gain) { best_gain = before - after; best_h = h; }
+        }
+        if(best_h == boost::graph_traits<Mesh>::null_halfedge()) continue;
+        const vertex_descriptor y = source(best_h, m);
+        const Point_3 at = get(vpm, y);
+        const vertex_descriptor z = CGAL::Euler::collapse_edge(edge(best_h, m), m);
+        put(vpm, z, at);
+        gone.insert(z == x ? y : x);
+        ++done;
+        ++*collapses;
+        ++stats.untangle_changes;
       }
     }
     return done;
