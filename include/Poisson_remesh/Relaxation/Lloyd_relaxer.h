@@ -1655,6 +1655,10 @@ private:
       shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
       const double collapse_floor = s.untangle_collapse_min_angle * CGAL_PI / 180;
       std::set<vertex_descriptor> gone;
+      // (each trial copies the whole mesh: at most 64 per pass, a large input folded in many
+      // places would spend its time there)
+      std::size_t trials = 0;
+      const std::size_t max_trials = 64;
       for(vertex_descriptor x : shared) {
         if(gone.count(x) || constraint(x, m, is_feature, is_fixed) != 0) continue;
         // (the crossings of the faces around x and a neighbour, before and after)
@@ -1673,7 +1677,8 @@ private:
           std::vector<vertex_descriptor> xy = {x, y};
           std::sort(xy.begin(), xy.end());
           const std::size_t before = crossings_near(m, xy);
-          if(before == 0) continue;
+          if(before == 0 || trials >= max_trials) continue;
+          ++trials;
           Mesh copy;
           std::map<halfedge_descriptor, typename boost::graph_traits<Mesh>::halfedge_descriptor> h2h;
           CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
