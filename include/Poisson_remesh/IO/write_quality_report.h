@@ -14,6 +14,7 @@
 #include <functional>
 #include <iomanip>
 #include <ostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -138,19 +139,20 @@ inline std::string to_json(const Quality_report& r, const std::string& indent = 
      << in << "\"irregular_share\": " << r.irregular_share << ",\n"
      << in << "\"degenerate_faces\": " << r.number_of_degenerate_faces << ",\n"
      << in << "\"bbox_diagonal\": " << r.bbox_diagonal << ",\n";
-  os << in << "\"self_intersecting_face_pairs\": ";
-  if(r.self_intersections_checked) os << r.number_of_self_intersecting_face_pairs; else os << "null";
-  os << ",\n" << in << "\"reference_self_intersecting_face_pairs\": ";
-  if(r.number_of_reference_self_intersecting_face_pairs) os << *r.number_of_reference_self_intersecting_face_pairs; else os << "null";
-  os << ",\n" << in << "\"self_intersecting_face_pairs_away_from_reference_ones\": ";
-  if(r.number_of_self_intersecting_face_pairs_away_from_reference_ones) os << *r.number_of_self_intersecting_face_pairs_away_from_reference_ones; else os << "null";
-  os << ",\n" << in << "\"min_angle_away_from_sharp_corners_deg\": ";
-  if(r.min_angle_away_from_sharp_corners) os << *r.min_angle_away_from_sharp_corners; else os << "null";
-  os << ",\n" << in << "\"hausdorff_over_diagonal\": ";
-  if(r.hausdorff) os << *r.hausdorff; else os << "null";
-  os << ",\n" << in << "\"hausdorff_absolute\": ";
-  if(r.hausdorff_absolute) os << *r.hausdorff_absolute; else os << "null";
-  os << ",\n" << in << "\"valence_histogram\": {";
+  // (a figure that was not computed is null)
+  auto optional_field = [&](const char* name, const auto& value) {
+    os << in << "\"" << name << "\": ";
+    if(value) os << *value; else os << "null";
+    os << ",\n";
+  };
+  optional_field("self_intersecting_face_pairs",
+           r.self_intersections_checked ? std::optional<std::size_t>(r.number_of_self_intersecting_face_pairs) : std::nullopt);
+  optional_field("reference_self_intersecting_face_pairs", r.number_of_reference_self_intersecting_face_pairs);
+  optional_field("self_intersecting_face_pairs_away_from_reference_ones", r.number_of_self_intersecting_face_pairs_away_from_reference_ones);
+  optional_field("min_angle_away_from_sharp_corners_deg", r.min_angle_away_from_sharp_corners);
+  optional_field("hausdorff_over_diagonal", r.hausdorff);
+  optional_field("hausdorff_absolute", r.hausdorff_absolute);
+  os << in << "\"valence_histogram\": {";
   bool first = true;
   for(const auto& kv : r.valence_histogram) { os << (first ? "" : ", ") << "\"" << kv.first << "\": " << kv.second; first = false; }
   os << "},\n" << in << "\"angle_histogram_bin_width_deg\": " << r.angle_histogram_bin_width << ",\n"

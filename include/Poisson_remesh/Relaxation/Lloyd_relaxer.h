@@ -719,7 +719,9 @@ private:
   // keeping both new triangles' smallest angle over regularity_min_angle
   template <class Mesh, class IsFeatureEdge>
   std::size_t regularity_pass(Mesh& m, IsFeatureEdge is_feature, const Relaxation_settings& s, Relaxation_statistics& stats,
-                              double min_angle_degrees = -1,
+                              double min_angle_degrees = -1,   // (< 0: regularity_min_angle)
+                              // (given, it gets the flipped edges, and no look-ahead flip is made:
+                              // single flips can be undone in reverse order)
                               std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor>* flipped = nullptr) const
   {
     const double cos_max = std::cos(s.max_flip_normal_change * CGAL_PI / 180);
@@ -806,9 +808,10 @@ private:
     }
   }
 
-  // whether face f of m lies within two of its longest edge's lengths of a face of the input that
-  // cuts the input (cow's tail runs through its body): the mesh follows the input there, and a
-  // crossing of it is the input's own (the quality report leaves those out the same way)
+  // whether the centroid of face f of m lies within two of f's longest edge's lengths of the
+  // centroid of a face of the input that cuts the input (cow's tail runs through its body): the
+  // mesh follows the input there, and a crossing of it is the input's own (the quality report
+  // leaves out such crossings too, by its own measure: two mean edge lengths of tm to the face)
   template <class Mesh>
   bool near_input_crossing(typename boost::graph_traits<Mesh>::face_descriptor f, const Mesh& m) const
   {
@@ -1659,16 +1662,16 @@ private:
       // places would spend its time there)
       std::size_t trials = 0;
       const std::size_t max_trials = 64;
+      // the crossings of the faces around the vertices `around` (in m, or in a copy of it)
+      auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around) {
+        const auto fs = internal::faces_around(g, around);
+        std::size_t n = 0;
+        for(const auto& fp : internal::intersecting_pairs_near(g, fs))
+          if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+        return n;
+      };
       for(vertex_descriptor x : shared) {
         if(gone.count(x) || constraint(x, m, is_feature, is_fixed) != 0) continue;
-        // (the crossings of the faces around x and a neighbour, before and after)
-        auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around) {
-          const auto fs = internal::faces_around(g, around);
-          std::size_t n = 0;
-          for(const auto& fp : internal::intersecting_pairs_near(g, fs))
-            if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
-          return n;
-        };
         halfedge_descriptor best_h = boost::graph_traits<Mesh>::null_halfedge();
         std::size_t best_gain = 0;
         for(halfedge_descriptor h : CGAL::halfedges_around_target(x, m)) {   // h: y -> x
@@ -1685,11 +1688,7 @@ private:
           const Point_3 at = get(vpm, y);
           const auto z = CGAL::Euler::collapse_edge(edge(h2h[h], copy), copy);
           put(get(CGAL::vertex_point, copy), z, at);
-          double worst = CGAL_PI;
-          for(auto g : CGAL::halfedges_around_target(z, copy))
-            if(!is_border(g, copy))
-              worst = std::min(worst, min_angle(get(get(CGAL::vertex_point, copy), source(g, copy)), at, get(get(CGAL::vertex_point, copy), target(next(g, copy), copy))));
-          if(!(worst >= collapse_floor)) continue;
+          if(!(smallest_angles_around(z, copy, at).first >= collapse_floor)) continue;
           const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z));
           if(after < before && before - after > best_gain) { best_gain = before - after; best_h = h; }
         }
