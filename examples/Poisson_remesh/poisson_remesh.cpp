@@ -53,6 +53,10 @@ static const char* usage =
   "  --features none     keep no sharp features (borders are always kept)\n"
   "  --no-grading        sample pointed tips (horns, claws thinner than the spacing) at the spacing\n"
   "                      too (default: finer around them, graded back to the spacing)\n"
+  "  --regrading K       remesh again, at most K times, sampling finer where the result still cuts\n"
+  "                      itself or keeps triangles under 30 degrees away from the input's sharp corners\n"
+  "                      (an input crumpled finer than the spacing); the best result is kept (default 6,\n"
+  "                      0: off)\n"
   "  --compare-peer      also run the peer and add its column to the table\n"
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
@@ -70,7 +74,7 @@ int main(int argc, char** argv)
   std::string method = "poisson", report_file, svg_file, density_svg_file;
   cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60, fidelity = 0.008;
-  unsigned long seed = 0, iterations = 0;
+  unsigned long seed = 0, iterations = 0, regrading = 6;
   bool repair = false, self_intersections = true, compare_peer = false, features = true, grading = true;
   try {
     cli::Arguments args(argc, argv);
@@ -91,6 +95,7 @@ int main(int argc, char** argv)
       else if(a == "--repair") repair = true;
       else if(a == "--compare-peer") compare_peer = true;
       else if(a == "--no-grading") grading = false;
+      else if(a == "--regrading") regrading = args.whole_number(a);
       else if(a == "--features") {
         const std::string v = args.value(a);
         if(v != "none") throw cli::Usage_error("--features takes 'none' (use --sharp-angle A for an angle)");
@@ -162,6 +167,7 @@ int main(int argc, char** argv)
           .number_of_iterations(unsigned(iterations ? iterations : 10))
           .fidelity_tolerance(fidelity)
           .feature_grading(grading)
+          .regrading_attempts(unsigned(regrading))
           .density(field));
     });
     std::cout << run.seconds() << " s (features " << run.seconds_features << ", sampling " << run.seconds_sampling
@@ -190,6 +196,9 @@ int main(int argc, char** argv)
       std::cout << "  note: beside triangles still under 30 degrees, " << run.relaxation.refinement_insertions
                 << " vertices were inserted and " << run.relaxation.refinement_removals << " removed ("
                 << run.relaxation.refinement_flips << " flips)\n";
+    if(run.number_of_regrading_attempts)
+      std::cout << "  note: remeshed " << run.number_of_regrading_attempts << " more time(s), sampling finer where the result"
+                << " cut itself or kept triangles under 30 degrees; kept the best\n";
     if(run.number_of_merged_samples)
       std::cout << "  note: " << run.number_of_merged_samples
                 << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";

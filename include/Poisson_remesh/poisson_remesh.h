@@ -15,12 +15,14 @@
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/Tessellation/mutual_tessellation.h>
 #include <Poisson_remesh/internal/feature_grading.h>
+#include <Poisson_remesh/internal/regrading.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -43,6 +45,14 @@ struct Poisson_remesh_result
   /// feature curves not kept: closer than a spacing beside another curve for several spacings,
   /// their samples were refused (internal::crowded_curve_run in a row)
   std::size_t number_of_dropped_feature_curves = 0;
+  /// remeshes made again, finer where the last one crossed itself or kept triangles under 30
+  /// degrees (`regrading_attempts`, internal/regrading.h)
+  unsigned int number_of_regrading_attempts = 0;
+  /// in the output (the best attempt): face pairs that cut each other away from the input's own
+  /// crossings, triangles under 30 degrees none of whose vertices is fixed, and the smallest angle
+  /// away from the input's corners whose own angle is smaller (degrees, as quality_report())
+  std::size_t crossing_pairs_left = 0, sharp_triangles_left = 0;
+  double min_angle_away_from_corners = 180;
   Relaxation_statistics relaxation;
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
   double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
@@ -64,7 +74,12 @@ struct Poisson_remesh_result
   Relaxation_settings::max_deviation),
   `feature_grading` (default true; uniform density only: finer sampling around pointed tips --
   horns, claws thinner than the spacing -- graded back to it, where the spacing leaves sharp
-  triangles; the output has a few more vertices there: see internal/feature_grading.h) and
+  triangles; the output has a few more vertices there: see internal/feature_grading.h),
+  `regrading_attempts` (default 6 for a uniform density and the default relaxer, else 0; 0: off;
+  a result that cuts itself, or keeps a smallest angle
+  under 30 degrees away from the input's sharp corners -- an input crumpled finer than the
+  spacing -- is remeshed again, at most this many times, with the sampling finer around the
+  places at fault and a new draw; the best result is kept: see internal/regrading.h) and
   `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features).
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
@@ -92,97 +107,158 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
   // is finer there already: Max Planck's adaptive remesh lost 5.5 degrees of theta_min with both)
-  const std::vector<double> radii =
+  std::vector<double> radii =
       vertex_radii.empty() && choose_parameter(get_parameter(np, internal_np::feature_grading), true)
         ? internal::feature_graded_radii(input, in_vpm, features, radius, result.number_of_graded_tips)
         : vertex_radii;
   result.seconds_features = since(t);
 
-  t = now();
-  std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
-  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
-  std::vector<std::size_t> crowded;
-  result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, seed, std::back_inserter(samples), radii, &crowded);
-  // a feature curve that runs closer than a spacing beside another (its samples refused in a
-  // row) is no feature of the output: its samples are surface samples already
-  result.number_of_dropped_feature_curves = crowded.size();
-  if(!crowded.empty()) internal::drop_feature_curves(features, crowded, input);
-  result.seconds_sampling = since(t);
+  // (a posteriori) the remesh is made again, finer where its result still cuts itself or keeps
+  // triangles under 30 degrees (internal/regrading.h); the best one is kept
+  // (by default only for a uniform density and the default relaxer: an adaptive density is the
+  // user's choice of where to be finer, and a user's relaxer may not aim at 30 degrees)
+  const bool regrading_by_default = vertex_radii.empty() && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
+  const unsigned int regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), regrading_by_default ? 6u : 0u);
+  const internal::Regrading_settings regrading;
+  internal::Input_crossings<TriangleMesh, Point_3> input_crossings;
+  const Feature_set<TriangleMesh> detected_features = features;   // (the sampling drops crowded curves from its copy)
+  const Poisson_remesh_result first = result;
+  TriangleMesh best;
+  Poisson_remesh_result best_result;
+  internal::Regrading_places<Point_3> best_places;
+  double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
+  unsigned int regraded = 0;
+  // the pointed tips (the last corners of the feature set)
+  std::vector<Point_3> tips;
+  for(std::size_t i = features.corners.size() - features.number_of_tips; i < features.corners.size(); ++i)
+    tips.push_back(get(in_vpm, features.corners[i]));
+  std::sort(tips.begin(), tips.end());
+  for(unsigned int attempt = 0;; ++attempt) {
+    result = first;
+    features = detected_features;
+    auto is_tip = [&](vertex_descriptor v) { return std::binary_search(tips.begin(), tips.end(), get(get(CGAL::vertex_point, output), v)); };
+    t = now();
+    std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
+    const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+    std::vector<std::size_t> crowded;
+    // (each attempt draws anew: a triangle left sharp at a corner is a matter of the draw)
+    const unsigned int attempt_seed = seed + regrading.seed_step * attempt;
+    result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded);
+    // a feature curve that runs closer than a spacing beside another (its samples refused in a
+    // row) is no feature of the output: its samples are surface samples already
+    result.number_of_dropped_feature_curves = crowded.size();
+    if(!crowded.empty()) internal::drop_feature_curves(features, crowded, input);
+    seconds[0] += since(t);
 
-  t = now();
-  clear(output);
-  const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
-  result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
-  result.number_of_merged_samples = tessellation.merged_samples.size();
-  result.seconds_tessellation = since(t);
+    t = now();
+    clear(output);
+    const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
+    result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
+    result.number_of_merged_samples = tessellation.merged_samples.size();
+    seconds[1] += since(t);
 
-  t = now();
-  // what each output vertex is: corner, feature or surface sample (leftover input vertices are fixed)
-  // (a dynamic map: the relaxer may add feature vertices)
-  auto kind_map = get(CGAL::dynamic_vertex_property_t<int>(), output);
-  for(vertex_descriptor v : vertices(output)) put(kind_map, v, -1);
-  for(const auto& v : tessellation.vertices)
-    if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
-  auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
-  Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
-  auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
-  // an output feature edge joins two feature (or corner) samples along an input feature curve
-  auto is_feature = [&](edge_descriptor e) {
-    const vertex_descriptor a = source(halfedge(e, output), output), b = target(halfedge(e, output), output);
-    const int ka = kind(a), kb = kind(b);
-    if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
-    if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
-    const Point_3 mid = CGAL::midpoint(point(a), point(b));
-    const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
-    if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
-    // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
-    // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
-    // curve), the edge may be flipped away
-    for(auto h : {halfedge(e, output), opposite(halfedge(e, output), output)}) {
-      if(is_border(h, output)) continue;
-      const vertex_descriptor c = target(next(h, output), output);
-      const int kc = kind(c);
-      if(kc != int(Sample_kind::corner) && kc != int(Sample_kind::feature)) continue;
-      const auto u = point(a) - point(c), w = point(b) - point(c);
-      const double uw = CGAL::to_double(u * w);
-      if(uw < 0 && uw * uw > 0.75 * CGAL::to_double(u.squared_length()) * CGAL::to_double(w.squared_length())) return false;   // angle at c > 150 degrees
+    t = now();
+    // what each output vertex is: corner, feature or surface sample (leftover input vertices are fixed)
+    // (a dynamic map: the relaxer may add feature vertices)
+    auto kind_map = get(CGAL::dynamic_vertex_property_t<int>(), output);
+    for(vertex_descriptor v : vertices(output)) put(kind_map, v, -1);
+    for(const auto& v : tessellation.vertices)
+      if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
+    auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
+    Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+    auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
+    // an output feature edge joins two feature (or corner) samples along an input feature curve
+    auto is_feature = [&](edge_descriptor e) {
+      const vertex_descriptor a = source(halfedge(e, output), output), b = target(halfedge(e, output), output);
+      const int ka = kind(a), kb = kind(b);
+      if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
+      if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
+      const Point_3 mid = CGAL::midpoint(point(a), point(b));
+      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
+      if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
+      // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
+      // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
+      // curve), the edge may be flipped away
+      for(auto h : {halfedge(e, output), opposite(halfedge(e, output), output)}) {
+        if(is_border(h, output)) continue;
+        const vertex_descriptor c = target(next(h, output), output);
+        const int kc = kind(c);
+        if(kc != int(Sample_kind::corner) && kc != int(Sample_kind::feature)) continue;
+        const auto u = point(a) - point(c), w = point(b) - point(c);
+        const double uw = CGAL::to_double(u * w);
+        if(uw < 0 && uw * uw > 0.75 * CGAL::to_double(u.squared_length()) * CGAL::to_double(w.squared_length())) return false;   // angle at c > 150 degrees
+      }
+      return true;
+    };
+    if(attempt > 0) {
+      // a second attempt also frees what need not stay: the corners left on no feature edge (their
+      // curves dropped or unsampled; not the pointed tips, the last corners of the set) and the
+      // input vertices the tessellation could not remove (they move on the input like the samples)
+      for(vertex_descriptor v : vertices(output)) {
+        const int k = kind(v);
+        if(k < 0) { put(kind_map, v, int(Sample_kind::surface)); continue; }
+        if(k != int(Sample_kind::corner) || is_tip(v)) continue;
+        std::size_t on_feature = 0;
+        for(auto h : CGAL::halfedges_around_target(v, output))
+          if(is_border(edge(h, output), output) || is_feature(edge(h, output))) ++on_feature;
+        if(on_feature == 0) put(kind_map, v, int(Sample_kind::surface));
+      }
     }
-    return true;
-  };
-  auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
-  auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
-  Relaxation_settings settings;
-  settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-  settings.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.max_deviation);
-  if(!(settings.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
-  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
-    if(radii.empty()) {
-      result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
-    } else {
-      // adaptive density (or graded): Eq. 6 weights with the density at the samples (Eq. 1: ~ 1 / r^2);
-      // vertices the relaxer adds take the mean of their neighbours
-      auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
-      for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
-      for(const auto& v : tessellation.vertices)
-        if(v.sample != tessellation.no_sample) put(density_map, v.vertex, 1.0 / (samples[v.sample].radius * samples[v.sample].radius));
-      auto density = [&](vertex_descriptor v) {
-        const double d = get(density_map, v);
-        if(d > 0) return d;
-        double sum = 0;
-        int n = 0;
-        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, output), output))
-          if(get(density_map, w) > 0) { sum += get(density_map, w); ++n; }
-        const double mean = n ? sum / n : 1.0;
-        put(density_map, v, mean);
-        return mean;
-      };
-      result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
+    auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
+    auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
+    Relaxation_settings settings;
+    settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
+    settings.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.max_deviation);
+    if(!(settings.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
+    if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
+      if(radii.empty()) {
+        result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
+      } else {
+        // adaptive density (or graded): Eq. 6 weights with the density at the samples (Eq. 1: ~ 1 / r^2);
+        // vertices the relaxer adds take the mean of their neighbours
+        auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
+        for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
+        for(const auto& v : tessellation.vertices)
+          if(v.sample != tessellation.no_sample) put(density_map, v.vertex, 1.0 / (samples[v.sample].radius * samples[v.sample].radius));
+        auto density = [&](vertex_descriptor v) {
+          const double d = get(density_map, v);
+          if(d > 0) return d;
+          double sum = 0;
+          int n = 0;
+          for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, output), output))
+            if(get(density_map, w) > 0) { sum += get(density_map, w); ++n; }
+          const double mean = n ? sum / n : 1.0;
+          put(density_map, v, mean);
+          return mean;
+        };
+        result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
+      }
+    } else {   // the user's model of the Relaxer concept
+      result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
     }
-  } else {   // the user's model of the Relaxer concept
-    result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
+    internal::collect_garbage(output);
+    seconds[2] += since(t);
+    const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+    const bool last = !places.wanted() || attempt >= regrading_attempts;
+    if(attempt == 0 || places.better_than(best_places)) {
+      best_places = places;
+      if(!last) { clear(best); CGAL::copy_face_graph(output, best); best_result = result; }
+    } else if(last) {   // an earlier attempt was better: it is the output
+      clear(output);
+      CGAL::copy_face_graph(best, output);
+      result = best_result;
+    }
+    if(last) break;
+    internal::regrade_radii(input, in_vpm, radius, places.places, radii, regrading);
+    ++regraded;
   }
-  internal::collect_garbage(output);
-  result.seconds_relaxation = since(t);
+  result.number_of_regrading_attempts = regraded;
+  result.crossing_pairs_left = best_places.crossing_pairs;
+  result.sharp_triangles_left = best_places.sharp_free;
+  result.min_angle_away_from_corners = best_places.min_angle_away;
+  result.seconds_sampling = seconds[0];
+  result.seconds_tessellation = seconds[1];
+  result.seconds_relaxation = seconds[2];
   return result;
 }
 

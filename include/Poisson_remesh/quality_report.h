@@ -451,6 +451,19 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   r.min_angle_away_from_sharp_corners = worst;
 }
 
+// the mean length of tm's edges (0 without edges)
+template <class TriangleMesh, class VPM>
+double mean_edge_length(const TriangleMesh& tm, VPM vpm)
+{
+  double length = 0;
+  std::size_t n = 0;
+  for(auto e : edges(tm)) {
+    length += std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, source(e, tm)), get(vpm, target(e, tm)))));
+    ++n;
+  }
+  return n ? length / double(n) : 0;
+}
+
 // the reference's self-intersecting face pairs, and those of tm's (`pairs`) that are not near them: a pair of tm is
 // near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
 // of the reference that cuts another
@@ -479,13 +492,7 @@ void fill_self_intersections_away_from_reference_ones(
   crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
   typedef CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh> Primitive;
   CGAL::AABB_tree<CGAL::AABB_traits<RK, Primitive>> tree(crossing.begin(), crossing.end(), ref);
-  double length = 0;
-  std::size_t n = 0;
-  for(auto e : edges(tm)) {
-    length += std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, source(e, tm)), get(vpm, target(e, tm)))));
-    ++n;
-  }
-  const double reach = n ? 2 * length / double(n) : 0;
+  const double reach = 2 * mean_edge_length(tm, vpm);
   auto near = [&](face_descriptor f) {
     double c[3] = {0, 0, 0};
     for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
