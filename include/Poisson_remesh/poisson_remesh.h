@@ -237,8 +237,8 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
       result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
     }
     internal::collect_garbage(output);
-    seconds[2] += since(t);
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+    seconds[2] += since(t);   // (the check with the relaxation)
     const bool last = !places.wanted() || attempt >= regrading_attempts;
     if(attempt == 0 || places.better_than(best_places)) {
       best_places = places;
