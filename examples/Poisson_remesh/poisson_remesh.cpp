@@ -55,8 +55,8 @@ static const char* usage =
   "                      too (default: finer around them, graded back to the spacing)\n"
   "  --regrading K       remesh again, at most K times, sampling finer where the result still cuts\n"
   "                      itself or keeps triangles under 30 degrees away from the input's sharp corners\n"
-  "                      (an input crumpled finer than the spacing); the best result is kept (default 6,\n"
-  "                      0: off)\n"
+  "                      (an input crumpled finer than the spacing); the best result is kept (default 6\n"
+  "                      with a uniform density, 0 with --adaptive or --density; 0: off)\n"
   "  --compare-peer      also run the peer and add its column to the table\n"
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
@@ -74,7 +74,8 @@ int main(int argc, char** argv)
   std::string method = "poisson", report_file, svg_file, density_svg_file;
   cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60, fidelity = 0.008;
-  unsigned long seed = 0, iterations = 0, regrading = 6;
+  unsigned long seed = 0, iterations = 0;
+  long regrading = -1;   // (-1: the library's default, 6 for a uniform density, else 0)
   bool repair = false, self_intersections = true, compare_peer = false, features = true, grading = true;
   try {
     cli::Arguments args(argc, argv);
@@ -95,7 +96,7 @@ int main(int argc, char** argv)
       else if(a == "--repair") repair = true;
       else if(a == "--compare-peer") compare_peer = true;
       else if(a == "--no-grading") grading = false;
-      else if(a == "--regrading") regrading = args.whole_number(a);
+      else if(a == "--regrading") regrading = long(args.whole_number(a));
       else if(a == "--features") {
         const std::string v = args.value(a);
         if(v != "none") throw cli::Usage_error("--features takes 'none' (use --sharp-angle A for an angle)");
@@ -167,7 +168,7 @@ int main(int argc, char** argv)
           .number_of_iterations(unsigned(iterations ? iterations : 10))
           .fidelity_tolerance(fidelity)
           .feature_grading(grading)
-          .regrading_attempts(unsigned(regrading))
+          .regrading_attempts(unsigned(regrading >= 0 ? regrading : density.adaptive || !density.density_file.empty() ? 0 : 6))
           .density(field));
     });
     std::cout << run.seconds() << " s (features " << run.seconds_features << ", sampling " << run.seconds_sampling
@@ -175,8 +176,9 @@ int main(int argc, char** argv)
               << "  " << run.sampling.number_of_samples << " samples (" << run.sampling.number_of_corners << " corners, "
               << run.sampling.number_of_feature_samples << " on features), spacing 2r = " << 2 * run.sampling.radius;
     if(run.sampling.max_radius > run.sampling.min_radius)
-      // (graded tips lower the uniform spacing near them; an adaptive density varies around its median)
-      std::cout << (run.number_of_graded_tips ? " (finer near tips: from " : " (median; from ") << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
+      // (graded tips and remakes lower the uniform spacing near them; an adaptive density varies around its median)
+      std::cout << (run.number_of_regrading_attempts ? " (finer near tips and where remade: from "
+                    : run.number_of_graded_tips ? " (finer near tips: from " : " (median; from ") << 2 * run.sampling.min_radius << " to " << 2 * run.sampling.max_radius << ")";
     std::cout << "\n";
     if(run.sampling.statistics.open_iso_curves || run.sampling.statistics.dropped_arcs)
       std::cout << "  note: " << run.sampling.statistics.open_iso_curves << " iso-curves did not close, "

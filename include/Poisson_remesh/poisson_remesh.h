@@ -48,9 +48,10 @@ struct Poisson_remesh_result
   /// remeshes made again, finer where the last one crossed itself or kept triangles under 30
   /// degrees (`regrading_attempts`, internal/regrading.h)
   unsigned int number_of_regrading_attempts = 0;
-  /// in the output (the best attempt): face pairs that cut each other away from the input's own
-  /// crossings, triangles under 30 degrees none of whose vertices is fixed, and the smallest angle
-  /// away from the input's corners whose own angle is smaller (degrees, as quality_report())
+  /// in the output (the best attempt; also measured without remakes): face pairs that cut each
+  /// other away from the input's own crossings, triangles under 30 degrees at no pointed tip, and
+  /// the smallest angle away from the input's corners whose own angle is smaller (degrees, as
+  /// quality_report() measures it with its default sharp angle, 60)
   std::size_t crossing_pairs_left = 0, sharp_triangles_left = 0;
   double min_angle_away_from_corners = 180;
   Relaxation_statistics relaxation;
@@ -126,6 +127,7 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   TriangleMesh best;
   Poisson_remesh_result best_result;
   internal::Regrading_places<Point_3> best_places;
+  bool output_is_best = true;
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
   unsigned int regraded = 0;
   // the pointed tips (the last corners of the feature set)
@@ -237,24 +239,31 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
       result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
     }
     internal::collect_garbage(output);
+    // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
-    seconds[2] += since(t);   // (the check with the relaxation)
     const bool last = !places.wanted() || attempt >= regrading_attempts;
-    if(attempt == 0 || places.better_than(best_places)) {
+    output_is_best = attempt == 0 || places.better_than(best_places);
+    if(output_is_best) {
       best_places = places;
       if(!last) { clear(best); CGAL::copy_face_graph(output, best); best_result = result; }
-    } else if(last) {   // an earlier attempt was better: it is the output
-      clear(output);
-      CGAL::copy_face_graph(best, output);
-      result = best_result;
     }
+    if(!last) {
+      internal::regrade_radii(input, in_vpm, radius, places.places, radii, regrading);
+      ++regraded;
+    }
+    seconds[2] += since(t);
     if(last) break;
-    internal::regrade_radii(input, in_vpm, radius, places.places, radii, regrading);
-    ++regraded;
+  }
+  if(!output_is_best) {   // an earlier attempt was better: it is the output
+    t = now();
+    clear(output);
+    CGAL::copy_face_graph(best, output);
+    result = best_result;
+    seconds[2] += since(t);
   }
   result.number_of_regrading_attempts = regraded;
   result.crossing_pairs_left = best_places.crossing_pairs;
-  result.sharp_triangles_left = best_places.sharp_free;
+  result.sharp_triangles_left = best_places.sharp;
   result.min_angle_away_from_corners = best_places.min_angle_away;
   result.seconds_sampling = seconds[0];
   result.seconds_tessellation = seconds[1];

@@ -17,16 +17,17 @@
 // the quality report counts them), or its smallest angle away from the input's sharp corners (the
 // quality report's min_angle_away_from_sharp_corners) is under `min_angle`.
 // Where: the centroids of those crossing faces and of the triangles under `min_angle` none of
-// whose vertices is fixed. Each input vertex within `reach` disk radii of such a place gets the
-// disk radius `first_ratio` r the first time, half its radius at a place met again (no less than
-// `smallest_ratio` r), and the radius grows back by at most `grading` per unit of length (as around
-// the tips of internal/feature_grading.h).
+// whose vertices is fixed. Each input vertex within `reach` r of such a place (r: the uniform
+// disk radius, or the median one) gets the disk radius `first_ratio` r, or half its radius when
+// that is `first_ratio` r or less already (a place met again, or near a graded tip), no less than
+// `smallest_ratio` r; then the radius grows back by at most `grading` per unit of length (as
+// around the tips of internal/feature_grading.h).
 // Also, from the second attempt on: each attempt samples with its own seed (random_seed + k
 // `seed_step`: a triangle left sharp at a fixed vertex is a matter of the draw), and the corners
 // left on no feature edge of the output (their curves dropped as crowded, or unsampled; not the
 // pointed tips) and the input vertices the tessellation could not remove are free to move.
 // The best attempt is kept: fewest crossings, then the largest smallest angle (up to the floor),
-// then the fewest sharp triangles among free vertices.
+// then the fewest triangles under `min_angle` at no pointed tip.
 //
 // Measured on femur at seeds 0-7 (poisson_remesh program at the input's vertex count): before,
 // 9-17 crossing pairs and theta_min 10.1-16.7 degrees at every seed; with it, no crossing pair and
@@ -53,7 +54,9 @@
 #include <CGAL/Kernel_traits.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -88,13 +91,13 @@ struct Regrading_places
   /// whether the remesh is to be made again
   bool wanted() const { return crossing_pairs > 0 || min_angle_away < floor; }
   /// lexicographic: fewer crossings, then the smallest angle away from corners (up to the floor),
-  /// then fewer sharp triangles among free vertices
+  /// then fewer sharp triangles (at no tip: counted alike in every attempt, whatever is fixed)
   bool better_than(const Regrading_places& o) const
   {
     if(crossing_pairs != o.crossing_pairs) return crossing_pairs < o.crossing_pairs;
     const double a = std::min(min_angle_away, floor), b = std::min(o.min_angle_away, o.floor);
     if(a != b) return a > b;
-    return sharp_free < o.sharp_free;
+    return sharp < o.sharp;
   }
 };
 
@@ -187,16 +190,32 @@ void regrade_radii(const InputMesh& input, VPM vpm, double radius, const std::ve
   auto vim = CGAL::get_initialized_vertex_index_map(input);
   if(radii.empty()) radii.assign(vertex_index_bound(input), radius);
   typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
-  // the places in a tree of their points' boxes would be faster; there are tens of them
-  const double reach2 = CGAL::square(s.reach * radius);
+  const double reach = s.reach * radius, reach2 = reach * reach;
   const double first = s.first_ratio * radius, smallest = s.smallest_ratio * radius;
+  // the places in a grid of cells of side `reach`: a vertex looks at its cell and the 26 around
+  // (a folded input may have thousands of places)
+  typedef std::array<long long, 3> Cell;
+  auto cell_of = [&](const Point_3& p) {
+    return Cell{{(long long)std::floor(CGAL::to_double(p.x()) / reach), (long long)std::floor(CGAL::to_double(p.y()) / reach),
+                 (long long)std::floor(CGAL::to_double(p.z()) / reach)}};
+  };
+  std::map<Cell, std::vector<Point_3>> grid;
+  for(const Point_3& q : places) grid[cell_of(q)].push_back(q);
+  auto near = [&](const Point_3& p) {
+    const Cell c = cell_of(p);
+    for(long long dx = -1; dx <= 1; ++dx)
+      for(long long dy = -1; dy <= 1; ++dy)
+        for(long long dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}});
+          if(it == grid.end()) continue;
+          for(const Point_3& q : it->second)
+            if(CGAL::to_double(typename K::Compute_squared_distance_3()(p, q)) < reach2) return true;
+        }
+    return false;
+  };
   Radius_queue queue;
   for(auto v : vertices(input)) {
-    const Point_3 p = get(vpm, v);
-    bool near = false;
-    for(const Point_3& q : places)
-      if(CGAL::to_double(typename K::Compute_squared_distance_3()(p, q)) < reach2) { near = true; break; }
-    if(!near) continue;
+    if(!near(get(vpm, v))) continue;
     double& x = radii[get(vim, v)];
     const double lowered = x > first ? first : std::max(smallest, 0.5 * x);
     if(lowered < x) { x = lowered; queue.push({x, std::size_t(get(vim, v))}); }
