@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -121,13 +122,14 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   const bool regrading_by_default = vertex_radii.empty() && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
   const unsigned int regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), regrading_by_default ? 6u : 0u);
   const internal::Regrading_settings regrading;
-  internal::Input_crossings<TriangleMesh, Point_3> input_crossings;
+  std::optional<internal::Reference_crossings<TriangleMesh>> input_crossings;   // (found when first needed)
   const Feature_set<TriangleMesh> detected_features = features;   // (the sampling drops crowded curves from its copy)
   const Poisson_remesh_result first = result;
   TriangleMesh best;
   Poisson_remesh_result best_result;
   internal::Regrading_places<Point_3> best_places;
   bool output_is_best = true;
+  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
   unsigned int regraded = 0;
   // the pointed tips (the last corners of the feature set)
@@ -141,7 +143,6 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
     auto is_tip = [&](vertex_descriptor v) { return std::binary_search(tips.begin(), tips.end(), get(get(CGAL::vertex_point, output), v)); };
     t = now();
     std::vector<Poisson_sample<TriangleMesh, Point_3>> samples;
-    const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
     std::vector<std::size_t> crowded;
     // (each attempt draws anew: a triangle left sharp at a corner is a matter of the draw)
     const unsigned int attempt_seed = seed + regrading.seed_step * attempt;

@@ -45,6 +45,7 @@
 #include <optional>
 #include <set>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -464,6 +465,49 @@ double mean_edge_length(const TriangleMesh& tm, VPM vpm)
   return n ? length / double(n) : 0;
 }
 
+// the faces of a reference mesh that cut another of its faces (PMP::self_intersections; a
+// degenerate face, reported as the pair (f, f), is no crossing of two sheets), and whether a face
+// of another mesh lies near them: its centroid within `reach` of one of them. The quality report
+// counts the crossings of tm away from the reference's own with it, and the remesher's remakes
+// (internal/regrading.h) look for theirs the same way.
+template <class ReferenceMesh>
+class Reference_crossings
+{
+  typedef typename boost::graph_traits<ReferenceMesh>::face_descriptor ref_face;
+  typedef typename boost::property_traits<decltype(get_const_property_map(CGAL::vertex_point, std::declval<const ReferenceMesh&>()))>::value_type Ref_point;
+  typedef typename CGAL::Kernel_traits<Ref_point>::Kernel RK;
+  typedef CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh> Primitive;
+
+public:
+  explicit Reference_crossings(const ReferenceMesh& ref)
+  {
+    std::vector<std::pair<ref_face, ref_face>> ref_pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(ref, std::back_inserter(ref_pairs));
+    ref_pairs.erase(std::remove_if(ref_pairs.begin(), ref_pairs.end(), [](const auto& p) { return p.first == p.second; }), ref_pairs.end());
+    number_of_pairs = ref_pairs.size();
+    for(const auto& p : ref_pairs) { faces_.push_back(p.first); faces_.push_back(p.second); }
+    std::sort(faces_.begin(), faces_.end());
+    faces_.erase(std::unique(faces_.begin(), faces_.end()), faces_.end());
+    if(!faces_.empty()) tree_.rebuild(faces_.begin(), faces_.end(), ref);
+  }
+  std::size_t number_of_pairs = 0;   ///< the reference's own crossing face pairs
+  template <class TriangleMesh, class VPM>
+  bool near(const TriangleMesh& tm, VPM vpm, typename boost::graph_traits<TriangleMesh>::face_descriptor f, double reach) const
+  {
+    if(faces_.empty()) return false;
+    double c[3] = {0, 0, 0};
+    for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
+      const auto& p = get(vpm, v);
+      c[0] += CGAL::to_double(p.x()) / 3; c[1] += CGAL::to_double(p.y()) / 3; c[2] += CGAL::to_double(p.z()) / 3;
+    }
+    return CGAL::to_double(tree_.squared_distance(typename RK::Point_3(c[0], c[1], c[2]))) <= reach * reach;
+  }
+
+private:
+  std::vector<ref_face> faces_;
+  CGAL::AABB_tree<CGAL::AABB_traits<RK, Primitive>> tree_;
+};
+
 // the reference's self-intersecting face pairs, and those of tm's (`pairs`) that are not near them: a pair of tm is
 // near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
 // of the reference that cuts another
@@ -473,37 +517,16 @@ void fill_self_intersections_away_from_reference_ones(
   const std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor, typename boost::graph_traits<TriangleMesh>::face_descriptor>>& pairs,
   Quality_report& r)
 {
-  typedef typename boost::graph_traits<ReferenceMesh>::face_descriptor ref_face;
-  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
-  typedef typename boost::property_traits<decltype(get_const_property_map(CGAL::vertex_point, ref))>::value_type Ref_point;
-  typedef typename CGAL::Kernel_traits<Ref_point>::Kernel RK;
-  std::vector<std::pair<ref_face, ref_face>> ref_pairs;
-  CGAL::Polygon_mesh_processing::self_intersections(ref, std::back_inserter(ref_pairs));
-  // (a degenerate face comes as the pair (f, f): no crossing of two sheets)
-  ref_pairs.erase(std::remove_if(ref_pairs.begin(), ref_pairs.end(), [](const auto& p) { return p.first == p.second; }), ref_pairs.end());
-  r.number_of_reference_self_intersecting_face_pairs = ref_pairs.size();
-  if(ref_pairs.empty()) {
+  const Reference_crossings<ReferenceMesh> crossings(ref);
+  r.number_of_reference_self_intersecting_face_pairs = crossings.number_of_pairs;
+  if(crossings.number_of_pairs == 0) {
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
     return;
   }
-  std::vector<ref_face> crossing;
-  for(const auto& p : ref_pairs) { crossing.push_back(p.first); crossing.push_back(p.second); }
-  std::sort(crossing.begin(), crossing.end());
-  crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
-  typedef CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh> Primitive;
-  CGAL::AABB_tree<CGAL::AABB_traits<RK, Primitive>> tree(crossing.begin(), crossing.end(), ref);
   const double reach = 2 * mean_edge_length(tm, vpm);
-  auto near = [&](face_descriptor f) {
-    double c[3] = {0, 0, 0};
-    for(auto v : CGAL::vertices_around_face(halfedge(f, tm), tm)) {
-      const auto& p = get(vpm, v);
-      c[0] += CGAL::to_double(p.x()) / 3; c[1] += CGAL::to_double(p.y()) / 3; c[2] += CGAL::to_double(p.z()) / 3;
-    }
-    return CGAL::to_double(tree.squared_distance(typename RK::Point_3(c[0], c[1], c[2]))) <= reach * reach;
-  };
   std::size_t away = 0;
   for(const auto& p : pairs)
-    if(!near(p.first) || !near(p.second)) ++away;
+    if(!crossings.near(tm, vpm, p.first, reach) || !crossings.near(tm, vpm, p.second, reach)) ++away;
   r.number_of_self_intersecting_face_pairs_away_from_reference_ones = away;
 }
 

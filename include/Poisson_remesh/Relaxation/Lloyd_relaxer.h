@@ -407,11 +407,11 @@ public:
       std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> flipped;
       // (nor under the mesh's smallest angle, up to optimized_angle: these flips trade little
       // regularity, 0.01-0.1 points, for the smallest angle, 35 -> 30 degrees on half the models)
+      const auto vpm = get(CGAL::vertex_point, mesh);
       double smallest = CGAL_PI;
       for(auto f : faces(mesh)) {
         const auto h = halfedge(f, mesh);
-        smallest = std::min(smallest, min_angle(get(get(CGAL::vertex_point, mesh), source(h, mesh)), get(get(CGAL::vertex_point, mesh), target(h, mesh)),
-                                                get(get(CGAL::vertex_point, mesh), target(next(h, mesh), mesh))));
+        smallest = std::min(smallest, min_angle(get(vpm, source(h, mesh)), get(vpm, target(h, mesh)), get(vpm, target(next(h, mesh), mesh))));
       }
       const double floor_degrees = std::max(s.final_regularity_min_angle, std::min(smallest * 180 / CGAL_PI, s.optimized_angle));
       if(before.size() <= num_faces(mesh) && regularity_pass(mesh, is_feature, s, stats, floor_degrees, &flipped) > 0) {

@@ -46,9 +46,6 @@
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/quality_report.h>
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/Kernel_traits.h>
@@ -57,7 +54,7 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <memory>
+#include <optional>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -76,7 +73,7 @@ struct Regrading_settings
 /// The places of a remesh to regrade: see the file's comment. `is_fixed(v)` tells the output's
 /// vertices that may not move, `is_tip(v)` the pointed tips among them (their triangles are no
 /// places). The input's crossing triangles are looked for once, and only when the output crosses
-/// itself (`ic` keeps them between calls).
+/// itself (`input_crossings` keeps them between calls).
 template <class Point_3>
 struct Regrading_places
 {
@@ -101,20 +98,11 @@ struct Regrading_places
   }
 };
 
-template <class InputMesh, class Point_3>
-struct Input_crossings
-{
-  bool known = false;
-  std::vector<typename boost::graph_traits<InputMesh>::face_descriptor> faces;
-  typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
-  typedef CGAL::AABB_face_graph_triangle_primitive<InputMesh> Primitive;
-  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
-  std::unique_ptr<Tree> tree;
-};
-
-template <class TriangleMesh, class InputMesh, class IsFixed, class IsTip, class Point_3>
+template <class TriangleMesh, class InputMesh, class IsFixed, class IsTip,
+          class Point_3 = typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type>
 Regrading_places<Point_3>
-regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixed, IsTip is_tip, Input_crossings<InputMesh, Point_3>& ic,
+regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixed, IsTip is_tip,
+                 std::optional<Reference_crossings<InputMesh>>& input_crossings,
                  const Regrading_settings& s = Regrading_settings())
 {
   Regrading_places<Point_3> r;
@@ -131,27 +119,13 @@ regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixe
   };
   const auto pairs = intersecting_pairs(tm);
   if(!pairs.empty()) {
-    if(!ic.known) {
-      ic.known = true;
-      for(const auto& fp : intersecting_pairs(input))
-        if(fp.first != fp.second) { ic.faces.push_back(fp.first); ic.faces.push_back(fp.second); }
-      std::sort(ic.faces.begin(), ic.faces.end());
-      ic.faces.erase(std::unique(ic.faces.begin(), ic.faces.end()), ic.faces.end());
-      if(!ic.faces.empty()) {
-        ic.tree.reset(new typename Input_crossings<InputMesh, Point_3>::Tree(ic.faces.begin(), ic.faces.end(), input));
-        ic.tree->accelerate_distance_queries();
-      }
-    }
+    if(!input_crossings) input_crossings.emplace(input);
     const double reach = 2 * mean_edge_length(tm, vpm);   // (as the quality report's)
-    auto near_input_crossing = [&](const Point_3& c) {
-      return ic.tree && CGAL::to_double(ic.tree->squared_distance(c)) <= reach * reach;
-    };
     for(const auto& fp : pairs) {
-      const Point_3 a = centroid_of(fp.first), b = centroid_of(fp.second);
-      if(near_input_crossing(a) && near_input_crossing(b)) continue;
+      if(input_crossings->near(tm, vpm, fp.first, reach) && input_crossings->near(tm, vpm, fp.second, reach)) continue;
       ++r.crossing_pairs;
-      r.places.push_back(a);
-      r.places.push_back(b);
+      r.places.push_back(centroid_of(fp.first));
+      r.places.push_back(centroid_of(fp.second));
     }
   }
   const double limit = std::cos(s.min_angle * CGAL_PI / 180);
