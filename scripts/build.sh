@@ -7,6 +7,8 @@ bash "$root/scripts/install_dependencies.sh"
 build="${POISSON_REMESH_BUILD_DIR:-$root/build}"
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
+# (everything on: the quick start may have configured the same folder with less)
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
+  -DPOISSON_REMESH_BUILD_EXAMPLES=ON -DPOISSON_REMESH_BUILD_TESTS=ON -DPOISSON_REMESH_BUILD_BENCHMARKS=ON "$@" >/dev/null
 jobs="${POISSON_REMESH_JOBS:-$(nproc)}"
 cmake --build "$build" -j "$jobs"

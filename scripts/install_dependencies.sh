@@ -1,15 +1,25 @@
 #!/usr/bin/env bash
 # Installs, with apt-get, the Debian packages Poisson_remesh needs to build, test and benchmark.
 # Does nothing when they are all present. Needs root (or sudo) only when something is missing.
+# Usage: install_dependencies.sh [--minimal]   (--minimal: only what the programs need to build
+# and run on CGAL's data set, for the quick start; no test, fuzzing or documentation tools)
 set -euo pipefail
+minimal=false
+[ "${1:-}" = "--minimal" ] && minimal=true
 
+# what the library and the programs need (and CGAL's data set: /usr/share/doc/libcgal-dev/data.tar.gz)
 packages=(
   cmake g++ make ccache
   libcgal-dev libboost-dev libeigen3-dev libgmp-dev libmpfr-dev
-  catch2 libtbb-dev
-  clang libclang-rt-14-dev   # the libFuzzer targets (scripts/fuzz.sh, ctest fuzz_smoke)
-  libcgal-demo   # CGAL's data set: /usr/share/doc/libcgal-dev/data.tar.gz
+  libcgal-demo
 )
+if ! $minimal; then
+  packages+=(
+    catch2 libtbb-dev
+    clang libclang-rt-14-dev   # the libFuzzer targets (scripts/fuzz.sh, ctest fuzz_smoke)
+    doxygen                    # the reference documentation (doc target, ctest doc_builds)
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

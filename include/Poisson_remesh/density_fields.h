@@ -51,7 +51,9 @@ struct Curvature_density
   /// ~ 1 / sqrt(curvature), which evens out the distance to the input (the chord error).
   double gamma = 1.0;
   /// the shortest and the longest target edge (0: set by `edge_ratio` and the vertex count)
+  /// @{
   double min_edge = 0, max_edge = 0;
+  /// @}
   /// the longest over the shortest edge when min_edge and max_edge are not both given
   double edge_ratio = 5.0;
   /// passes of Laplacian smoothing of the density (Fig. 6)
@@ -62,8 +64,9 @@ struct Curvature_density
 template <class VertexDensityMap>
 struct Vertex_density
 {
-  VertexDensityMap map;
+  VertexDensityMap map;   ///< a readable vertex property map of positive numbers
 };
+/// The density field of the user's values per vertex, `map` (a readable vertex property map).
 template <class VertexDensityMap>
 Vertex_density<VertexDensityMap> vertex_density(VertexDensityMap map) { return {map}; }
 
@@ -71,8 +74,9 @@ Vertex_density<VertexDensityMap> vertex_density(VertexDensityMap map) { return {
 template <class Function>
 struct Point_density
 {
-  Function function;
+  Function function;   ///< `function(p)`: a positive number for the 3D point `p`
 };
+/// The density field of the user's function `f` of the 3D point (evaluated at the vertices).
 template <class Function>
 Point_density<Function> point_density(Function f) { return {f}; }
 
@@ -220,6 +224,7 @@ std::vector<double> vertex_densities(const Uniform_density&, const TriangleMesh&
   return std::vector<double>(internal::vertex_index_bound(tm), 1.0);
 }
 
+/// The user's density at each vertex (indexed by the vertex index map).
 template <class TriangleMesh, class VPM, class Map>
 std::vector<double> vertex_densities(const Vertex_density<Map>& field, const TriangleMesh& tm, VPM)
 {
@@ -229,6 +234,7 @@ std::vector<double> vertex_densities(const Vertex_density<Map>& field, const Tri
   return d;
 }
 
+/// The user's function evaluated at each vertex (indexed by the vertex index map).
 template <class TriangleMesh, class VPM, class Function>
 std::vector<double> vertex_densities(const Point_density<Function>& field, const TriangleMesh& tm, VPM vpm)
 {

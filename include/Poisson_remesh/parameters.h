@@ -35,15 +35,25 @@ namespace internal_np {
 #undef POISSON_REMESH_add_named_parameter
 } // namespace internal_np
 
+/// A chain of named parameters that holds both CGAL's and the package's own: it *is a*
+/// `CGAL::Named_function_parameters` (CGAL's functions accept it) with a member function for every
+/// named parameter of both lists (`.target_vertex_count(n)`, `.vertex_point_map(vpm)`, ...). Start
+/// a chain with a free function of `Poisson_remesh::parameters`; the user manual lists the
+/// package's parameters.
 template <typename T, typename Tag, typename Base = CGAL::internal_np::No_property>
 struct Named_function_parameters
   : CGAL::Named_function_parameters<T, Tag, Base>
 {
+  /// the CGAL chain this one is
   typedef CGAL::Named_function_parameters<T, Tag, Base> cgal_type;
+  /// this type
   typedef Named_function_parameters<T, Tag, Base> self;
 
+  /// an empty chain
   Named_function_parameters() : cgal_type() {}
+  /// a chain of one parameter, of value `v`
   Named_function_parameters(const T& v) : cgal_type(v) {}
+  /// the parameter of value `v` in front of the chain `b`
   Named_function_parameters(const T& v, const Base& b) : cgal_type(v, b) {}
 
 #define POISSON_REMESH_chain_parameter(TAG, Z)                                 \
@@ -67,7 +77,9 @@ using CGAL::parameters::choose_parameter;
 using CGAL::parameters::get_parameter;
 using CGAL::parameters::is_default_parameter;
 
+/// the type of an empty chain: every parameter takes its default
 typedef CGAL::parameters::Default_named_parameters Default_named_parameters;
+/// an empty chain: every parameter takes its default
 inline Default_named_parameters default_values() { return Default_named_parameters(); }
 
 #define POISSON_REMESH_free_parameter(TAG, Z)                                  \

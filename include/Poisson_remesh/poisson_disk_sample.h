@@ -13,6 +13,7 @@
 #include <Poisson_remesh/Sampling/Boundary_sampler.h>
 #include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/parameters.h>
+#include <Poisson_remesh/progress.h>
 #include <Poisson_remesh/sizing.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -26,11 +27,14 @@ namespace Poisson_remesh {
 struct Poisson_disk_sampling_result
 {
   double radius = 0;                 ///< r: samples are at least 2r apart (geodesic); adaptive: the median disk radius
-  double min_radius = 0, max_radius = 0; ///< the range of the disk radius (equal to r for uniform density)
-  std::size_t number_of_samples = 0;
-  std::size_t number_of_corners = 0;
+  /// the range of the disk radius (equal to r for uniform density)
+  /// @{
+  double min_radius = 0, max_radius = 0;
+  /// @}
+  std::size_t number_of_samples = 0;  ///< all samples (corners and feature samples included)
+  std::size_t number_of_corners = 0;  ///< samples at corners
   std::size_t number_of_feature_samples = 0;  ///< (poisson_remesh(): without those of the dropped curves)
-  Sampling_statistics statistics;
+  Sampling_statistics statistics;     ///< the sampler's counters
 };
 
 /// The default `minimum_feature_length` of the sampler and the remesher, in sampling radii r:
@@ -168,7 +172,8 @@ template <class TriangleMesh, class VPM, class OutputIterator>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
                                                  double radius, unsigned int seed, OutputIterator out,
                                                  const std::vector<double>& vertex_radii = std::vector<double>(),
-                                                 std::vector<std::size_t>* crowded_curves = nullptr)
+                                                 std::vector<std::size_t>* crowded_curves = nullptr,
+                                                 Progress_reporter* progress = nullptr)
 {
   Poisson_disk_sampling_result result;
   result.radius = result.min_radius = result.max_radius = radius;
@@ -184,7 +189,15 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
   std::vector<std::size_t> crowded_samples;
   internal::sample_features(sampler, tm, vpm, fs, true, result, crowded_curves, &crowded_samples);
   sampler.seed_components();
-  sampler.fill();
+  if(progress != nullptr && progress->active()) {
+    // the count Eq. 1 expects at the median radius (adaptive: roughly)
+    const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(tm, CGAL::parameters::vertex_point_map(vpm)));
+    const std::size_t expected = std::size_t(paper_rho * paper_rho * area / (2 * std::sqrt(3.0) * radius * radius)) + 1;
+    (*progress)("sampling", sampler.samples().size(), expected);
+    sampler.fill([&](std::size_t n) { (*progress)("sampling", n, expected); });
+  } else {
+    sampler.fill();
+  }
   // the samples of crowded curves are surface samples (the caller drops those curves)
   std::sort(crowded_samples.begin(), crowded_samples.end());
   for(std::size_t i = 0; i < sampler.samples().size(); ++i) {
@@ -215,6 +228,8 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
     `corner_angle` (60), `minimum_feature_length` (default feature_length_in_radii * r),
     `edge_is_constrained_map` (CGAL; implies Feature_policy::user_map)
   - `vertex_point_map` (CGAL)
+  - `progress` (a callable `bool(const Progress&)`) and `callback` (CGAL; `bool(double)`): told
+    how far the sampling is; returning false stops it with Cancelled (progress.h)
 */
 template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputIterator out,
@@ -229,7 +244,11 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputI
   const std::vector<double> vertex_radii = internal::vertex_radii_from_parameters(tm, vpm, np);
   const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(tm, vpm, np)
                                              : internal::quantile(vertex_radii, 0.5);
-  return internal::poisson_disk_sample(tm, vpm, internal::detect_features_at_radius(tm, radius, np), radius, seed, out, vertex_radii);
+  internal::Progress_reporter progress(np);
+  progress("features", 0, 1);
+  const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(tm, radius, np);
+  progress.set_span(0.05, 1.0);
+  return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii, nullptr, &progress);
 }
 
 

@@ -18,8 +18,13 @@
 #include <Poisson_remesh/internal/regrading.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
+#include <Poisson_remesh/progress.h>
 
 #include <CGAL/Kernel_traits.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <algorithm>
@@ -39,7 +44,12 @@ template <class P> void collect_garbage(CGAL::Surface_mesh<P>& m) { m.collect_ga
 /// What poisson_remesh() did, stage by stage.
 struct Poisson_remesh_result
 {
-  Poisson_disk_sampling_result sampling;
+  Poisson_disk_sampling_result sampling;   ///< the sampling's counts (of the kept attempt)
+  /// zero-area input faces removed before remeshing (on a copy of the input), and the vertices
+  /// that their removal left pinched, split (0 with `strict_input`, which refuses such input)
+  /// @{
+  std::size_t number_of_repaired_faces = 0, number_of_split_vertices = 0;
+  /// @}
   std::size_t number_of_leftover_input_vertices = 0;  ///< input vertices the tessellation could not remove
   std::size_t number_of_merged_samples = 0;  ///< samples on the vertex of another (nearly zero-area input faces)
   std::size_t number_of_graded_tips = 0;     ///< pointed tips sampled finer (`feature_grading`)
@@ -53,40 +63,26 @@ struct Poisson_remesh_result
   /// other away from the input's own crossings, triangles under 30 degrees at no pointed tip, and
   /// the smallest angle away from the input's corners whose own angle is smaller (degrees, as
   /// quality_report() measures it with its default sharp angle, 60)
+  /// @{
   std::size_t crossing_pairs_left = 0, sharp_triangles_left = 0;
   double min_angle_away_from_corners = 180;
-  Relaxation_statistics relaxation;
+  /// @}
+  Relaxation_statistics relaxation;   ///< what the relaxation did (of the kept attempt)
+  /// the time of each stage in seconds, summed over the remakes (the relaxation's includes their
+  /// checks and copies)
+  /// @{
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
+  /// @}
+  /// the time of the whole run in seconds
   double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
 };
 
-/*!
-  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first; a
-  `Surface_mesh` output has no removed elements left: its garbage is collected).
+namespace internal {
 
-  Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
-  `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
-  `sharp_angle`, `corner_angle`, `minimum_feature_length`, `edge_is_constrained_map`),
-  `density` (Uniform_density() by default; Curvature_density{...}, vertex_density(map) or
-  point_density(function) for an adaptive remesh, §5: see density_fields.h),
-  `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings),
-  `fidelity_tolerance` (default 0.008: after the rounds, input vertices farther than this times
-  the input's bounding-box diagonal from the mesh -- rims and crests finer than the sample
-  spacing -- are inserted, at most 1% of the vertex count; 0 disables: see
-  Relaxation_settings::max_deviation),
-  `feature_grading` (default true; uniform density only: finer sampling around pointed tips --
-  horns, claws thinner than the spacing -- graded back to it, where the spacing leaves sharp
-  triangles; the output has a few more vertices there: see internal/feature_grading.h),
-  `regrading_attempts` (default 6 for a uniform density and the default relaxer, else 0; 0: off;
-  a result that cuts itself, or keeps a smallest angle
-  under 30 degrees away from the input's sharp corners -- an input crumpled finer than the
-  spacing -- is remeshed again, at most this many times, with the sampling finer around the
-  places at fault and a new draw; the best result is kept: see internal/regrading.h) and
-  `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features).
-*/
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& output,
-                                     const NamedParameters& np = parameters::default_values())
+// poisson_remesh() on an input without zero-area faces; `input` is read through the
+// vertex_point_map of `np` (if any)
+template <class TriangleMesh, class NamedParameters>
+Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMesh& output, const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -101,6 +97,9 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   Poisson_remesh_result result;
   auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
   if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
+  Progress_reporter progress(np);
+  progress.set_span(0, 0.02);
+  progress("features", 0, 1);
   auto t = now();
   const std::vector<double> vertex_radii = internal::vertex_radii_from_parameters(input, in_vpm, np);
   const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(input, in_vpm, np)
@@ -146,7 +145,10 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
     std::vector<std::size_t> crowded;
     // (each attempt draws anew: a triangle left sharp at a corner is a matter of the draw)
     const unsigned int attempt_seed = seed + regrading.seed_step * attempt;
-    result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded);
+    // (the shares of the run, for CGAL's callback: sampling, tessellation, relaxation; each
+    // remake spans the whole range again)
+    progress.set_span(0.02, 0.3);
+    result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress);
     // a feature curve that runs closer than a spacing beside another (its samples refused in a
     // row) is no feature of the output: its samples are surface samples already
     result.number_of_dropped_feature_curves = crowded.size();
@@ -154,6 +156,8 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
     seconds[0] += since(t);
 
     t = now();
+    progress.set_span(0.3, 0.4);
+    progress("tessellation", 0, 1);
     clear(output);
     const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
     result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
@@ -169,6 +173,14 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
       if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
     auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
     Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+    progress.set_span(0.4, 1.0);
+    if(progress.active())
+      relaxer.set_progress([&](const char* stage, std::size_t done, std::size_t total) {
+        // (the Lloyd rounds take about half of the relaxation, the passes after them the rest)
+        const bool lloyd = stage[0] == 'r';
+        progress.set_span(lloyd ? 0.4 : 0.7, lloyd ? 0.7 : 1.0);
+        progress(stage, done, total);
+      });
     auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
     // an output feature edge joins two feature (or corner) samples along an input feature curve
     auto is_feature = [&](edge_descriptor e) {
@@ -269,6 +281,72 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   result.seconds_sampling = seconds[0];
   result.seconds_tessellation = seconds[1];
   result.seconds_relaxation = seconds[2];
+  return result;
+}
+
+} // namespace internal
+
+/*!
+  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first; a
+  `Surface_mesh` output has no removed elements left: its garbage is collected).
+
+  Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
+  `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
+  `sharp_angle`, `corner_angle`, `minimum_feature_length`, `edge_is_constrained_map`),
+  `density` (Uniform_density() by default; Curvature_density{...}, vertex_density(map) or
+  point_density(function) for an adaptive remesh, §5: see density_fields.h),
+  `number_of_iterations` (CGAL; relaxation rounds, default 10: see Relaxation_settings),
+  `fidelity_tolerance` (default 0.008: after the rounds, input vertices farther than this times
+  the input's bounding-box diagonal from the mesh -- rims and crests finer than the sample
+  spacing -- are inserted, at most 1% of the vertex count; 0 disables: see
+  Relaxation_settings::max_deviation),
+  `feature_grading` (default true; uniform density only: finer sampling around pointed tips --
+  horns, claws thinner than the spacing -- graded back to it, where the spacing leaves sharp
+  triangles; the output has a few more vertices there: see internal/feature_grading.h),
+  `regrading_attempts` (default 6 for a uniform density and the default relaxer, else 0; 0: off;
+  a result that cuts itself, or keeps a smallest angle
+  under 30 degrees away from the input's sharp corners -- an input crumpled finer than the
+  spacing -- is remeshed again, at most this many times, with the sampling finer around the
+  places at fault and a new draw; the best result is kept: see internal/regrading.h) and
+  `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features),
+  `progress` and `callback` (CGAL) (told how far the run is; returning false stops it with
+  Cancelled: see progress.h) and `strict_input` (default false: zero-area input faces are
+  removed, on a copy of the input, before remeshing, and counted in
+  `Poisson_remesh_result::number_of_repaired_faces`; true: such input throws std::invalid_argument).
+*/
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& output,
+                                     const NamedParameters& np = parameters::default_values())
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
+  if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
+  // zero-area faces have no sampling, tessellation or angle to speak of: a remesher exists to
+  // replace them, so they are removed first (on a copy: the input is the caller's)
+  std::size_t degenerate = 0;
+  for(auto f : faces(input))
+    if(PMP::is_degenerate_triangle_face(f, input, CGAL::parameters::vertex_point_map(in_vpm))) ++degenerate;
+  if(degenerate == 0) return internal::poisson_remesh_impl(input, output, np);
+  if(choose_parameter(get_parameter(np, internal_np::strict_input), false))
+    throw std::invalid_argument("poisson_remesh: the input has " + std::to_string(degenerate) +
+                                " zero-area faces (strict_input: not repaired)");
+  TriangleMesh repaired;
+  CGAL::copy_face_graph(input, repaired, CGAL::parameters::vertex_point_map(in_vpm));
+  PMP::remove_degenerate_faces(repaired);
+  const std::size_t split = PMP::duplicate_non_manifold_vertices(repaired);
+  std::size_t left = 0;
+  for(auto f : faces(repaired))
+    if(PMP::is_degenerate_triangle_face(f, repaired)) ++left;
+  if(left > 0 || faces(repaired).empty() || !CGAL::is_valid_polygon_mesh(repaired))
+    throw std::invalid_argument("poisson_remesh: the input's " + std::to_string(degenerate) +
+                                " zero-area faces could not all be removed");
+  internal::collect_garbage(repaired);
+  Poisson_remesh_result result =
+    internal::poisson_remesh_impl(repaired, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, repaired)));
+  result.number_of_repaired_faces = degenerate;
+  result.number_of_split_vertices = split;
   return result;
 }
 

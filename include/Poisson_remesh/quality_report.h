@@ -54,40 +54,47 @@ namespace Poisson_remesh {
 struct Quality_report
 {
   // size and topology
-  std::size_t number_of_vertices = 0;
-  std::size_t number_of_edges = 0;
-  std::size_t number_of_faces = 0;
-  std::size_t number_of_components = 0;
+  std::size_t number_of_vertices = 0;   ///< V
+  std::size_t number_of_edges = 0;      ///< E
+  std::size_t number_of_faces = 0;      ///< F
+  std::size_t number_of_components = 0; ///< connected components
   long euler_characteristic = 0;        ///< V - E + F
   long genus = 0;                       ///< sum over components of (2 - chi_c - b_c) / 2
-  std::size_t number_of_border_edges = 0;
-  std::size_t number_of_border_cycles = 0;
+  std::size_t number_of_border_edges = 0;  ///< edges on a border
+  std::size_t number_of_border_cycles = 0; ///< borders (b)
 
   // angles
   double min_angle = 0;                 ///< theta_min
   double mean_min_angle = 0;            ///< mean of each triangle's smallest angle
-  double max_angle = 0;
+  double max_angle = 0;                 ///< the largest angle of the mesh
   double share_min_angle_below_30 = 0;  ///< share of triangles whose smallest angle is under 30 degrees
   std::size_t number_of_degenerate_faces = 0; ///< faces with a zero-length edge or zero area
   double angle_histogram_bin_width = 1; ///< degrees
   std::vector<std::size_t> angle_histogram; ///< all 3F angles, bins of angle_histogram_bin_width over [0, 180]
 
   // shape quality (Frey-Borouchaki)
-  double min_shape_quality = 0;
-  double mean_shape_quality = 0;
+  double min_shape_quality = 0;         ///< the smallest Q = 2 sqrt(3) area / (half-perimeter * longest edge)
+  double mean_shape_quality = 0;        ///< the mean Q over the triangles (1: all equilateral)
 
   // connectivity
   double irregular_share = 0;           ///< valence != 6 inside, != 4 on a border
-  std::map<std::size_t, std::size_t> valence_histogram;
+  std::map<std::size_t, std::size_t> valence_histogram;   ///< valence -> number of vertices
 
   // geometry
-  double bbox_diagonal = 0;
-  bool self_intersections_checked = false;
-  std::size_t number_of_self_intersecting_face_pairs = 0;
+  double bbox_diagonal = 0;             ///< of the mesh's bounding box
+  bool self_intersections_checked = false;   ///< false with `check_self_intersections(false)`
+  std::size_t number_of_self_intersecting_face_pairs = 0;   ///< (when checked)
 
   // against a reference (the input of a remesh)
   std::optional<double> hausdorff;      ///< two-sided, over the reference's bbox diagonal
-  std::optional<double> hausdorff_absolute;
+  std::optional<double> hausdorff_absolute;   ///< two-sided, in the unit of the coordinates
+  /// the error bound of `hausdorff` (relative to the reference's bbox diagonal, as it): the
+  /// true distance is within this of the figure (named parameter hausdorff_relative_error_bound)
+  std::optional<double> hausdorff_error_bound;
+  /// `hausdorff` was sampled (named parameter sampled_hausdorff): a lower bound of the true
+  /// distance, which is at most `hausdorff_error_bound` more; else the true distance is within
+  /// `hausdorff_error_bound` of it
+  bool hausdorff_sampled = false;
   /// theta_min leaving out the angles at the reference's sharp corners: vertices of the
   /// reference whose own angle is under 30 degrees, so that no mesh keeping them can do better
   /// there (see quality_report(tm, reference, np))
@@ -96,8 +103,10 @@ struct Quality_report
   /// (when self-intersections are checked) the reference's own self-intersecting face pairs, and
   /// those of tm not within two mean edge lengths (of tm) of them: where two sheets of the
   /// reference cross, a mesh following it closely crosses too
+  /// @{
   std::optional<std::size_t> number_of_reference_self_intersecting_face_pairs;
   std::optional<std::size_t> number_of_self_intersecting_face_pairs_away_from_reference_ones;
+  /// @}
 };
 
 namespace internal {
@@ -567,6 +576,31 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
   return r;
 }
 
+// A sampled one-sided Hausdorff distance from `a` to the surface of `tree` (the sampled Hausdorff
+// of the quality report): the largest distance from a's vertices, edge midpoints and face
+// centroids to it (a lower bound of the true one-sided distance), and how much more the true one
+// can be: the distance to a surface is 1-Lipschitz, and every point of a triangle whose longest
+// edge is l lies within l / (2 sqrt 3) of one of its vertices or edge midpoints (the four
+// half-size triangles they make each lie within their circumradius, at most their longest edge
+// over sqrt 3, of one of their corners).
+template <class Mesh, class VPM, class Tree>
+std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const Tree& tree)
+{
+  double lower = 0, cover = 0;
+  auto reach = [&](const auto& p) { lower = std::max(lower, CGAL::to_double(tree.squared_distance(p))); };
+  for(auto v : vertices(a)) reach(get(vpm, v));
+  for(auto e : edges(a)) reach(CGAL::midpoint(get(vpm, source(e, a)), get(vpm, target(e, a))));
+  for(auto f : faces(a)) {
+    const auto h = halfedge(f, a);
+    const auto p = get(vpm, source(h, a)), q = get(vpm, target(h, a)), r = get(vpm, target(next(h, a), a));
+    reach(CGAL::centroid(p, q, r));
+    const double l2 = std::max({CGAL::to_double(CGAL::squared_distance(p, q)), CGAL::to_double(CGAL::squared_distance(q, r)),
+                                CGAL::to_double(CGAL::squared_distance(r, p))});
+    cover = std::max(cover, l2);
+  }
+  return {std::sqrt(lower), std::sqrt(cover) / (2 * std::sqrt(3.0))};
+}
+
 } // namespace internal
 
 /*!
@@ -592,7 +626,11 @@ Quality_report quality_report(const TriangleMesh& tm,
   over the reference's bounding-box diagonal.
 
   Extra named parameters: `hausdorff_relative_error_bound` (default 1e-4): the error bound of the
-  Hausdorff estimate, relative to the reference's bounding-box diagonal; `sharp_angle` (degrees,
+  Hausdorff estimate, relative to the reference's bounding-box diagonal; `sampled_hausdorff`
+  (bool, default false): instead, the largest distance from the vertices, edge midpoints and face
+  centroids of each mesh to the other (much cheaper on large flat parts), a lower bound whose gap
+  to the true distance is bounded by the longest edge of either mesh over 2 sqrt 3
+  (`hausdorff_error_bound`); `sharp_angle` (degrees,
   default 60): the dihedral angle of the reference's sharp edges, for
   `min_angle_away_from_sharp_corners` (theta_min without the angles at corners of the reference
   whose own angle is under 30 degrees: cone tips with an angle sum under 90 degrees, or -- at a
@@ -620,10 +658,30 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
   CGAL::Bbox_3 b = CGAL::Polygon_mesh_processing::bbox(reference);
   const double diag = std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
                                 CGAL::square(b.zmax() - b.zmin()));
-  const double h = CGAL::Polygon_mesh_processing::bounded_error_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(
-    tm, reference, rel_bound * diag, CGAL::parameters::vertex_point_map(vpm));
-  r.hausdorff_absolute = h;
-  r.hausdorff = diag > 0 ? h / diag : 0.0;
+  if(choose_parameter(get_parameter(np, internal_np::sampled_hausdorff), false)) {
+    // (cheap: a few closest-point queries per element, with the gap to the true value stated)
+    typedef typename boost::property_traits<decltype(vpm)>::value_type Point;
+    typedef typename CGAL::Kernel_traits<Point>::Kernel RK;
+    typedef CGAL::AABB_tree<CGAL::AABB_traits<RK, CGAL::AABB_face_graph_triangle_primitive<TriangleMesh, decltype(vpm)>>> Tm_tree;
+    typedef CGAL::AABB_tree<CGAL::AABB_traits<RK, CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh>>> Reference_tree;
+    Tm_tree tm_tree(faces(tm).first, faces(tm).second, tm, vpm);
+    Reference_tree reference_tree(faces(reference).first, faces(reference).second, reference);
+    tm_tree.accelerate_distance_queries();
+    reference_tree.accelerate_distance_queries();
+    const auto there = internal::sampled_one_sided_hausdorff(tm, vpm, reference_tree);
+    const auto back = internal::sampled_one_sided_hausdorff(reference, get_const_property_map(CGAL::vertex_point, reference), tm_tree);
+    const double h = std::max(there.first, back.first);
+    r.hausdorff_absolute = h;
+    r.hausdorff = diag > 0 ? h / diag : 0.0;
+    r.hausdorff_sampled = true;
+    r.hausdorff_error_bound = diag > 0 ? std::max(there.first + there.second, back.first + back.second) / diag - *r.hausdorff : 0.0;
+  } else {
+    const double h = CGAL::Polygon_mesh_processing::bounded_error_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(
+      tm, reference, rel_bound * diag, CGAL::parameters::vertex_point_map(vpm));
+    r.hausdorff_absolute = h;
+    r.hausdorff = diag > 0 ? h / diag : 0.0;
+    r.hausdorff_error_bound = rel_bound;
+  }
   internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
   if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, pairs, r);
   return r;

@@ -2,7 +2,7 @@
 //
 // Entry point: read_surface_mesh(filename, mesh, np) -- reads OFF, OBJ, PLY, STL (and GOCAD .ts)
 // through CGAL's readers, merges duplicated points, triangulates polygons, makes the orientation consistent where that is
-// possible, and checks that the result is input the remesher can work on (paper §3: an orientable
+// possible, removes zero-area faces and splits non-manifold vertices (unless `strict_input`), and checks that the result is input the remesher can work on (paper §3: an orientable
 // two-manifold; borders and several components are allowed). Every problem is reported by a
 // Poisson_remesh::Input_error with a specific code and a message that names the problem, how many
 // elements it touches and the first of them. Nothing is written: a failed read leaves `mesh` empty.
@@ -54,6 +54,7 @@ enum class Input_error_code {
   cannot_triangulate      ///< a polygon that CGAL could not triangulate
 };
 
+/// The name of an error code, as written in the enumeration ("non_manifold_edges", ...).
 inline const char* to_string(Input_error_code c)
 {
   switch(c) {
@@ -77,8 +78,10 @@ inline const char* to_string(Input_error_code c)
 class Input_error : public std::runtime_error
 {
 public:
+  /// `message`: the sentence `what()` returns
   Input_error(Input_error_code code, const std::string& message)
     : std::runtime_error(message), code_(code) {}
+  /// what went wrong
   Input_error_code code() const { return code_; }
 private:
   Input_error_code code_;
@@ -91,11 +94,12 @@ struct Read_report
   std::size_t input_polygons = 0;         ///< faces in the file
   std::size_t triangulated_polygons = 0;  ///< faces with more than 3 vertices that were triangulated
   bool reoriented = false;                ///< faces were flipped to make the orientation consistent
-  std::size_t removed_degenerate_faces = 0; ///< with repair_degenerate_faces(true)
+  std::size_t removed_degenerate_faces = 0; ///< zero-area faces removed (repair_degenerate_faces, the default)
   std::size_t removed_isolated_points = 0;  ///< points used by no face (dropped)
   std::size_t merged_duplicate_points = 0;  ///< points at the same position as another one, merged into it
   std::size_t unmerged_duplicate_points = 0; ///< duplicates left apart: merging them would break manifoldness
   std::size_t split_pinched_vertices = 0;    ///< with repair_degenerate_faces(true): vertices split after the removal
+  std::size_t split_non_manifold_vertices = 0; ///< with repair_non_manifold_vertices(true): vertices of the file where several fans met, split (one vertex per fan)
   std::vector<std::string> warnings;      ///< one sentence each
 };
 
@@ -134,10 +138,11 @@ typedef std::pair<std::size_t, std::size_t> Soup_edge;
 inline Soup_edge make_soup_edge(std::size_t a, std::size_t b) { return a < b ? Soup_edge(a, b) : Soup_edge(b, a); }
 
 // Vertices whose incident polygons form more than one fan (connected through edges incident
-// to the vertex). Returns the count and the first such vertex.
-template <class PolygonRange>
-std::size_t count_non_manifold_soup_vertices(const PolygonRange& polygons, std::size_t nb_points,
-                                             std::size_t& first)
+// to the vertex). Returns the count and the first such vertex. With `split` (and `points`), each
+// fan after the first gets a copy of the vertex's point, so that the soup has no such vertex left.
+template <class PolygonRange, class PointRange = std::vector<int>>
+std::size_t count_non_manifold_soup_vertices(PolygonRange& polygons, std::size_t nb_points,
+                                             std::size_t& first, PointRange* points = nullptr)
 {
   std::vector<std::vector<std::size_t>> incident(nb_points);
   for(std::size_t f = 0; f < polygons.size(); ++f)
@@ -167,7 +172,22 @@ std::size_t count_non_manifold_soup_vertices(const PolygonRange& polygons, std::
     }
     std::size_t fans = 0;
     for(std::size_t i = 0; i < inc.size(); ++i) if(find(i) == i) ++fans;
-    if(fans > 1) { if(count == 0) first = v; ++count; }
+    if(fans < 2) continue;
+    if(count == 0) first = v;
+    ++count;
+    if(points == nullptr) continue;
+    // the fan of the first polygon keeps v; every other fan gets a new point
+    std::map<std::size_t, std::size_t> fan_vertex;   // root -> vertex index
+    fan_vertex[find(0)] = v;
+    for(std::size_t i = 0; i < inc.size(); ++i) {
+      auto it = fan_vertex.find(find(i));
+      if(it == fan_vertex.end()) {
+        it = fan_vertex.emplace(find(i), points->size()).first;
+        const auto p = (*points)[v];
+        points->push_back(p);
+      }
+      for(auto& w : polygons[inc[i]]) if(w == v) w = it->second;
+    }
   }
   return count;
 }
@@ -206,8 +226,16 @@ bool soup_has_repeated_vertex(const PolygonRange& polygons)
 
   Named parameters:
   - `vertex_point_map`: the mesh's point map (default: `boost::get(CGAL::vertex_point, tm)`).
-  - `repair_degenerate_faces` (bool, default false): remove zero-area faces with
-    `CGAL::Polygon_mesh_processing::remove_degenerate_faces()` instead of refusing them.
+  - `repair_degenerate_faces` (bool, default true): remove zero-area faces with
+    `CGAL::Polygon_mesh_processing::remove_degenerate_faces()` instead of refusing them
+    (`Read_report::removed_degenerate_faces` counts them).
+  - `repair_non_manifold_vertices` (bool, default true): split each vertex whose faces form
+    several fans into one vertex per fan, as `CGAL::Polygon_mesh_processing::duplicate_non_manifold_vertices()`
+    does on a mesh, instead of refusing it (`Read_report::split_non_manifold_vertices`).
+  - `strict_input` (bool, default false): true makes both repairs default to false (the input is
+    refused with Input_error instead); an explicit repair parameter still wins.
+  What cannot be repaired is always refused: unreadable or empty files, NaN or infinite
+  coordinates, bad face indices, non-manifold edges, non-orientable surfaces.
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
@@ -220,7 +248,9 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   typedef typename boost::property_traits<VPM>::value_type Point;
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
 
-  const bool repair = choose_parameter(get_parameter(np, internal_np::repair_degenerate_faces), false);
+  const bool strict = choose_parameter(get_parameter(np, internal_np::strict_input), false);
+  const bool repair = choose_parameter(get_parameter(np, internal_np::repair_degenerate_faces), !strict);
+  const bool repair_vertices = choose_parameter(get_parameter(np, internal_np::repair_non_manifold_vertices), !strict);
   Read_report report;
   const std::string quoted = "'" + fname + "'";
 
@@ -353,8 +383,12 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   }
   {
     std::size_t first = 0;
-    const std::size_t bad = internal::count_non_manifold_soup_vertices(polygons, points.size(), first);
-    if(bad)
+    const std::size_t bad = internal::count_non_manifold_soup_vertices(polygons, points.size(), first,
+                                                                        repair_vertices ? &points : nullptr);
+    if(bad && repair_vertices) {
+      report.split_non_manifold_vertices = bad;
+      report.warnings.push_back(std::to_string(bad) + " non-manifold vertices (faces around them formed several fans) were split, one vertex per fan");
+    } else if(bad)
       throw Input_error(Input_error_code::non_manifold_vertices,
                         quoted + ": " + std::to_string(bad) + " non-manifold vertices (faces around them form several fans), first: vertex " +
                         std::to_string(first));
@@ -397,7 +431,7 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
       throw Input_error(Input_error_code::degenerate_faces,
                         quoted + ": " + std::to_string(degenerate) + " degenerate (zero-area) faces, first: face " +
                         std::to_string(first_degenerate) + (report.triangulated_polygons ? " after triangulation" : "") +
-                        "; repair them with the repair option");
+                        "; they are removed unless strict input is asked for");
     }
     PMP::remove_degenerate_faces(tm, CGAL::parameters::vertex_point_map(vpm));
     std::size_t left = 0;

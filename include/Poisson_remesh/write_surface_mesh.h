@@ -31,6 +31,7 @@ namespace Poisson_remesh {
 class Output_error : public std::runtime_error
 {
 public:
+  /// `message`: a complete sentence for the user, naming the file
   explicit Output_error(const std::string& message) : std::runtime_error(message) {}
 };
 

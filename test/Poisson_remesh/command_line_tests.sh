@@ -83,6 +83,45 @@ check "report written" grep -q '"input"' "$dir/r.json"
 check "svg written" grep -q "</svg>" "$dir/r.svg"
 check "no temporary files left" sh -c "! ls -a '$dir' | grep -q partial"
 
+# repaired by default: zero-area faces and non-manifold vertices (issue 25); refused with --strict
+# (a tetrahedron whose bottom edge A-B is split at M on one side only, closed by the zero-area face A-M-B)
+printf 'OFF\n5 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.5 0 0\n3 0 2 4\n3 4 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 1\n' > "$dir/zero_area.off"
+check "zero-area face repaired" run 0 "$poisson_remesh" --vertices 60 --quiet "$dir/zero_area.off" "$dir/zero_area_out.off"
+check "repair reported" has err "1 degenerate faces were removed"
+echo precious > "$dir/keep2.off"
+check "strict refuses zero-area faces" run 1 "$poisson_remesh" --strict --vertices 60 "$dir/zero_area.off" "$dir/keep2.off"
+check "strict names the faces" has err "degenerate (zero-area) faces"
+check "output untouched (strict)" grep -q precious "$dir/keep2.off"
+check "non-manifold vertices split" run 0 "$poisson_remesh" --vertices 800 --no-self-intersections --regrading 0 "$data/meshes/polygon_mesh.off" "$dir/polygon_mesh_out.off"
+check "split reported" has err "2 non-manifold vertices"
+check "non-manifold output written" sh -c "head -1 '$dir/polygon_mesh_out.off' | grep -q OFF"
+
+# progress: on stderr in a terminal (script(1) gives the program one), nothing in a pipe
+check "no progress in a pipe" run 0 "$poisson_remesh" --vertices 800 --no-self-intersections "$data/meshes/elephant.off" "$dir/p.off"
+check "stderr of a piped run is empty" sh -c "! grep -q 'sampling' '$dir/err'"
+if command -v script >/dev/null 2>&1; then
+  check "progress in a terminal" sh -c "script -qec \"'$poisson_remesh' --vertices 800 --no-self-intersections '$data/meshes/elephant.off' '$dir/p.off'\" /dev/null > '$dir/tty' 2>&1"
+  check "progress names the stages" sh -c "grep -q 'samples of about' '$dir/tty' && grep -q 'relaxation: round' '$dir/tty'"
+  check "no progress with --quiet" sh -c "script -qec \"'$poisson_remesh' --quiet --vertices 800 --no-self-intersections '$data/meshes/elephant.off' '$dir/p.off'\" /dev/null > '$dir/tty' 2>&1 && ! grep -q 'samples of about' '$dir/tty'"
+fi
+
+# batch: ten inputs, one unreadable; nine outputs, a summary naming the bad one, exit code 1
+mkdir -p "$dir/batch_in"
+for m in elephant triceratops fandisk dino cow knot1 bull eight mushroom; do ln -s "$data/meshes/$m.off" "$dir/batch_in/$m.off"; done
+cp "$dir/nan.off" "$dir/batch_in/broken.off"
+check "batch with a bad file" run 1 "$poisson_remesh" --vertices 250 --no-self-intersections --regrading 0 -j 2 -o "$dir/batch_out" --summary "$dir/summary.csv" --summary-json "$dir/summary.json" "$dir/batch_in"
+check "nine outputs" sh -c "[ \$(ls '$dir/batch_out' | grep -c '_remeshed.off\$') -eq 9 ]"
+check "outputs are meshes" sh -c "for f in '$dir'/batch_out/*.off; do head -1 \"\$f\" | grep -q OFF || exit 1; done"
+check "one line per file" sh -c "[ \$(grep -c '^\[[0-9]*/10\]' '$dir/out') -eq 10 ]"
+check "the bad file is named" has out "broken.off: FAILED (bad input)"
+check "summary has ten rows and a header" sh -c "[ \$(wc -l < '$dir/summary.csv') -eq 11 ]"
+check "summary names the bad one" sh -c "grep 'broken.off' '$dir/summary.csv' | grep -q 'bad input'"
+check "summary figures" sh -c "grep 'elephant.off' '$dir/summary.csv' | grep -q ',ok,'"
+check "json summary" sh -c "grep -q '\"status\": \"bad input\"' '$dir/summary.json' && [ \$(grep -c '\"input\"' '$dir/summary.json') -eq 10 ]"
+check "batch needs inputs" run 2 "$poisson_remesh" -o "$dir/batch_out"
+check "one report file is not for a batch" run 2 "$poisson_remesh" --report "$dir/r.json" -o "$dir/batch_out" "$dir/batch_in"
+check "all good: exit 0" run 0 "$poisson_remesh" --vertices 200 --no-self-intersections --regrading 0 -o "$dir/batch_ok" "$data/meshes/elephant.off" "$data/meshes/fandisk.off"
+
 # poisson_sample
 check "poisson_sample --help" run 0 "$poisson_sample" --help
 check "poisson_sample needs a size" run 2 "$poisson_sample" "$data/meshes/elephant.off" "$dir/s.xyz"

@@ -388,11 +388,11 @@ TEST_CASE("named parameters: the package's and CGAL's chain in one expression an
 // ------------------------------------------------------------------ reading and validation
 namespace {
 
-PR::Input_error_code read_error(const std::string& file, std::string* message = nullptr)
+PR::Input_error_code read_error(const std::string& file, std::string* message = nullptr, bool strict = false)
 {
   Mesh m;
   try {
-    PR::read_surface_mesh(file, m);
+    PR::read_surface_mesh(file, m, PR::parameters::strict_input(strict));
   } catch(const PR::Input_error& e) {
     if(message) *message = e.what();
     CHECK(is_empty(m));
@@ -438,7 +438,7 @@ TEST_CASE("reading refuses bad input with a specific error", "[read]")
   CHECK(read_error(write_text(dir / "bowtie.off",
                               "OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
                               "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
-                              "3 0 5 4\n3 0 4 6\n3 4 5 6\n3 0 6 5\n"), &msg) == C::non_manifold_vertices);
+                              "3 0 5 4\n3 0 4 6\n3 4 5 6\n3 0 6 5\n"), &msg, true) == C::non_manifold_vertices);
   CHECK_THAT(msg, Catch::Contains("vertex 0"));
   // a Moebius strip of 5 quads
   {
@@ -457,7 +457,8 @@ TEST_CASE("reading refuses bad input with a specific error", "[read]")
     CHECK(read_error(write_text(dir / "moebius.off", s.str()), &msg) == C::non_orientable);
   }
   // collinear triangle on an otherwise valid open mesh
-  CHECK(read_error(write_text(dir / "flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 0 2 1\n"), &msg) == C::degenerate_faces);
+  // (the last two only with strict_input: by default they are repaired)
+  CHECK(read_error(write_text(dir / "flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 0 2 1\n"), &msg, true) == C::degenerate_faces);
   CHECK_THAT(msg, Catch::Contains("1 degenerate"));
 }
 
@@ -522,7 +523,7 @@ TEST_CASE("reading accepts imperfect but valid input and says what it did", "[re
     PR::read_surface_mesh(write_text(dir / "two.off", two), m);
     CHECK(PR::quality_report(m).number_of_components == 2);
   }
-  SECTION("degenerate faces are removed on request") {
+  SECTION("degenerate faces are removed by default") {
     Mesh m;
     const std::string strip = "OFF\n5 3 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n2 1 0\n3 0 1 3\n3 1 2 4\n3 1 4 3\n";
     std::ofstream(dir / "ok.off") << strip;
@@ -530,10 +531,33 @@ TEST_CASE("reading accepts imperfect but valid input and says what it did", "[re
     CHECK(num_faces(m) == 3);
     const std::string with_flat = "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n3 0 1 3\n3 0 2 1\n";
     Mesh r;
-    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "flat.off", with_flat), r,
-                                                    PR::parameters::repair_degenerate_faces(true));
+    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "flat.off", with_flat), r);
     CHECK(rr.removed_degenerate_faces == 1);
     CHECK(PR::quality_report(r).number_of_degenerate_faces == 0);
+    // an explicit false wins over the default, and strict input refuses them
+    Mesh s;
+    CHECK_THROWS_AS(PR::read_surface_mesh(dir.string() + "/flat.off", s, PR::parameters::repair_degenerate_faces(false)), PR::Input_error);
+    CHECK(is_empty(s));
+  }
+  SECTION("non-manifold vertices are split, one vertex per fan") {
+    // two tetrahedra sharing only vertex 0, and a fan of two triangles touching a third at vertex 0
+    const std::string bowtie = "OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                               "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+                               "3 0 5 4\n3 0 4 6\n3 4 5 6\n3 0 6 5\n";
+    Mesh r;
+    const PR::Read_report rr = PR::read_surface_mesh(write_text(dir / "bowtie.off", bowtie), r);
+    CHECK(rr.split_non_manifold_vertices == 1);
+    CHECK(num_vertices(r) == 8);
+    CHECK(num_faces(r) == 8);
+    CHECK(CGAL::is_valid_polygon_mesh(r));
+    for(auto v : vertices(r)) CHECK(!PMP::is_non_manifold_vertex(v, r));
+    // two components, each a closed tetrahedron: Euler characteristic 2 each
+    CHECK(long(num_vertices(r)) - long(num_edges(r)) + long(num_faces(r)) == 4);
+    // CGAL's own polygon_mesh.off has two such vertices
+    Mesh p;
+    const PR::Read_report rp = PR::read_surface_mesh(data_mesh("meshes/polygon_mesh.off"), p);
+    CHECK(rp.split_non_manifold_vertices == 2);
+    for(auto v : vertices(p)) CHECK(!PMP::is_non_manifold_vertex(v, p));
   }
   SECTION("a removed degenerate face leaves no pinched vertex (found by fuzzing)") {
     // triangles A and B joined only through the zero-area face (0, 2, 3)
@@ -590,4 +614,23 @@ TEST_CASE("sizing: edge length and disk radius follow from the vertex count", "[
   CHECK(1.0 / (2 * std::sqrt(3.0) * r * r) == Approx(500.0));
   CHECK(PR::disk_radius_from_vertex_count(1.0, 500.0) == Approx(0.844 * r));
   CHECK_THROWS_AS(PR::edge_length_from_vertex_count(-1, 10), std::invalid_argument);
+}
+
+TEST_CASE("the sampled Hausdorff distance brackets CGAL's bounded-error one", "[report]")
+{
+  // a coarse and a fine sphere, and a cube against its finer triangulation (flat: distance 0)
+  const Mesh coarse = analytic::sphere(12, 6).to_mesh<Mesh>(), fine = analytic::sphere(48, 24).to_mesh<Mesh>();
+  const Mesh cube = analytic::cube(1).to_mesh<Mesh>(), fine_cube = analytic::cube(6).to_mesh<Mesh>();
+  for(const auto& pair : {std::make_pair(&coarse, &fine), std::make_pair(&cube, &fine_cube)}) {
+    const PR::Quality_report exact = PR::quality_report(*pair.first, *pair.second, PR::parameters::check_self_intersections(false));
+    const PR::Quality_report sampled =
+      PR::quality_report(*pair.first, *pair.second, PR::parameters::check_self_intersections(false).sampled_hausdorff(true));
+    REQUIRE(sampled.hausdorff);
+    REQUIRE(sampled.hausdorff_error_bound);
+    CHECK(sampled.hausdorff_sampled);
+    CHECK_FALSE(exact.hausdorff_sampled);
+    // a lower bound of the true distance, which is at most the stated gap more
+    CHECK(*sampled.hausdorff <= *exact.hausdorff + *exact.hausdorff_error_bound + 1e-12);
+    CHECK(*exact.hausdorff - *exact.hausdorff_error_bound <= *sampled.hausdorff + *sampled.hausdorff_error_bound + 1e-12);
+  }
 }

@@ -332,7 +332,7 @@ TEST_CASE("the whole remesher runs on Polyhedron_3 and keeps a cube's corners an
 
 TEST_CASE("the remakes (regrading) run on Polyhedron_3 too", "[remesh][polyhedron][regrading]")
 {
-  // femur folds at every seed the first time (manual 9.1): the remakes copy the best result
+  // femur folds at every seed the first time (RESULTS.md, Development notes: remakes): the remakes copy the best result
   // aside with copy_face_graph, and free corners through the kind map
   typedef CGAL::Polyhedron_3<K, CGAL::Polyhedron_items_with_id_3> Polyhedron;
   Polyhedron in, out;
@@ -766,4 +766,89 @@ TEST_CASE("an adaptive remesh follows the input more closely than a uniform one 
       CHECK(*a.hausdorff < *PR::quality_report(uniform_mended, in).hausdorff);
     }
   }
+}
+
+// ------------------------------------------------------------------ progress, cancellation, repair (issue 25)
+TEST_CASE("a remesh reports its stages in order, a few hundred times at most, and stops when told", "[remesh][progress]")
+{
+  Mesh in, out;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), in);
+  std::vector<std::string> stages;
+  std::size_t calls = 0, last_sampling = 0;
+  bool sampling_grows = true;
+  std::vector<double> fractions;
+  const auto run = PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(800).random_seed(1u).regrading_attempts(0u)
+    .progress([&](const PR::Progress& p) {
+      ++calls;
+      if(stages.empty() || stages.back() != p.stage) stages.push_back(p.stage);
+      if(std::string(p.stage) == "sampling") {
+        if(p.done < last_sampling) sampling_grows = false;
+        last_sampling = p.done;
+        CHECK(p.total > 0);
+      }
+      return true;
+    })
+    .callback([&](double f) { fractions.push_back(f); return true; }));
+  CHECK(stages == std::vector<std::string>{"features", "sampling", "tessellation", "relaxation", "optimization"});
+  CHECK(sampling_grows);
+  // the reports are throttled to one per 1/200 of the expected count: the last one is within that
+  // of the final count
+  CHECK(last_sampling <= run.sampling.number_of_samples);
+  CHECK(last_sampling + run.sampling.number_of_samples / 100 + 2 >= run.sampling.number_of_samples);
+  CHECK(calls < 1500);
+  REQUIRE(fractions.size() > 10);
+  CHECK(fractions.front() >= 0);
+  CHECK(fractions.back() == Approx(1.0));
+  CHECK(std::is_sorted(fractions.begin(), fractions.end()));
+
+  // the same run without reports gives the same mesh (reporting changes nothing)
+  Mesh plain;
+  PR::poisson_remesh(in, plain, PR::parameters::target_vertex_count(800).random_seed(1u).regrading_attempts(0u));
+  CHECK(num_vertices(plain) == num_vertices(out));
+  bool same = true;
+  for(auto v : vertices(plain)) same = same && plain.point(v) == out.point(v);
+  CHECK(same);
+
+  // false stops the run with Cancelled, in the stage that said so
+  Mesh stopped;
+  try {
+    PR::poisson_remesh(in, stopped, PR::parameters::target_vertex_count(800).progress([](const PR::Progress& p) {
+      return !(std::string(p.stage) == "sampling" && p.done > 100); }));
+    FAIL("not cancelled");
+  } catch(const PR::Cancelled& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains("sampling"));
+  }
+  // and so does CGAL's callback, here in the relaxation (past 40% of the run)
+  CHECK_THROWS_AS(PR::poisson_remesh(in, stopped, PR::parameters::target_vertex_count(800).callback([](double f) { return f < 0.5; })),
+                  PR::Cancelled);
+  // the sampler alone reports too
+  std::vector<PR::Poisson_sample<Mesh, Point>> samples;
+  std::size_t sampler_calls = 0;
+  PR::poisson_disk_sample(in, std::back_inserter(samples), PR::parameters::target_vertex_count(500)
+    .progress([&](const PR::Progress&) { ++sampler_calls; return true; }));
+  CHECK(sampler_calls > 2);
+  CHECK(sampler_calls < 600);
+}
+
+TEST_CASE("poisson_remesh removes the zero-area faces of its input first, unless strict", "[remesh][repair]")
+{
+  // a tetrahedron whose edge A-B is split at M on one side only, closed by the zero-area face A-M-B
+  Mesh in, out;
+  const auto a = in.add_vertex(Point(0, 0, 0)), b = in.add_vertex(Point(1, 0, 0)), c = in.add_vertex(Point(0, 1, 0)),
+             d = in.add_vertex(Point(0, 0, 1)), m = in.add_vertex(Point(0.5, 0, 0));
+  for(auto f : {std::array<Mesh::Vertex_index, 3>{{a, c, m}}, {{m, c, b}}, {{a, b, d}}, {{a, d, c}}, {{b, c, d}}, {{a, m, b}}})
+    REQUIRE(in.add_face(f[0], f[1], f[2]) != Mesh::null_face());
+  REQUIRE(CGAL::is_closed(in));
+  const auto run = PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(80).random_seed(2u));
+  CHECK(run.number_of_repaired_faces == 1);
+  CHECK(num_vertices(in) == 5);   // the caller's input is untouched
+  const PR::Quality_report q = PR::quality_report(out, in);
+  CHECK(q.number_of_degenerate_faces == 0);
+  CHECK(q.number_of_border_edges == 0);
+  CHECK(q.genus == 0);
+  CHECK(q.number_of_components == 1);
+  CHECK(q.min_angle > 20);
+  CHECK(vertices_off_input(out, in) < 1e-9);
+  Mesh refused;
+  CHECK_THROWS_AS(PR::poisson_remesh(in, refused, PR::parameters::target_vertex_count(80).strict_input(true)), std::invalid_argument);
 }

@@ -19,13 +19,17 @@ class Sampler
 public:
   /// `Poisson_remesh::Poisson_sample<TriangleMesh, Point_3>`: location on the input, point, kind, level
   typedef unspecified_type Sample;
+  /// `CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double>`: a face and barycentric
+  /// coordinates
   typedef unspecified_type Face_location;
 
+  /// a sampler of the surface `tm` (read through `vpm`), all its random draws from `seed`
   Sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed);
 
   /// sets the expellant-disk radius r (samples >= 2r apart); a smaller radius than the current one
   /// starts a new level of detail that keeps every existing sample
   void set_radius(double r);
+  /// the current disk radius r
   double radius() const;
 
   /// inserts a sample whatever the available boundary says (corners, feature points); with
@@ -36,6 +40,8 @@ public:
   /// draws samples on the available boundary until it is empty
   void fill();
 
+  /// the samples so far, in the order they were added
   const std::vector<Sample>& samples() const;
+  /// counters of the run (`Poisson_remesh::Sampling_statistics`)
   const Sampling_statistics& statistics() const;
 };

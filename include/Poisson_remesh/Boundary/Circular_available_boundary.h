@@ -199,14 +199,17 @@ class Circular_available_boundary
   typedef typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type FIM;
 
 public:
+  /// a point of the surface: a face and barycentric coordinates
   typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
 
+  /// A live arc of the boundary and the sample whose iso-curve it belongs to.
   struct Stored_arc
   {
-    Arc arc;
-    std::size_t sample;
+    Arc arc;              ///< the arc, in the frame of its face
+    std::size_t sample;   ///< the index of the sample that owns it
   };
 
+  /// An empty boundary on the faces of `tm`.
   explicit Circular_available_boundary(const TriangleMesh& tm)
     : tm_(tm), fim_(CGAL::get_initialized_face_index_map(tm)), arcs_in_face_(num_faces(tm))
   {}
@@ -214,8 +217,11 @@ public:
   /// Pieces shorter than this are dropped (set to a tiny fraction of r by the sampler).
   void set_minimum_length(double l) { min_length_ = l; }
 
+  /// true when no arc is left (the sample set is maximal)
   bool empty() const { return alive_count_ == 0; }
+  /// the number of live arcs
   std::size_t number_of_arcs() const { return alive_count_; }
+  /// the total length of the live arcs
   double length() const { return fenwick_.total(); }
 
   /// All live arcs, for inspection and tests.
@@ -226,6 +232,7 @@ public:
     return out;
   }
 
+  /// removes every arc (a new level of detail starts from scratch)
   void clear()
   {
     arcs_.clear();
@@ -318,6 +325,7 @@ public:
     for(std::size_t c = 0; c < chains.size(); ++c) add_uncovered_runs(chains[c], new_cuts[c], sample, in_old_disks);
   }
 
+  /// the surface point at parameter `t` in [0, 1] along the arc `a`
   Face_location location(const Arc& a, double t) const
   {
     std::array<double, 3> b = a.barycentric(t);
@@ -333,8 +341,10 @@ public:
   void remove_arc(std::size_t i) { if(i < arcs_.size() && alive_[i]) kill(i); }
 
   /// decisions taken by crossing directions / by in_old_disks (for statistics)
+  /// @{
   std::size_t runs_decided_by_crossings() const { return by_crossings_; }
   std::size_t runs_decided_by_distance() const { return by_distance_; }
+  /// @}
 
 private:
   struct Piece

@@ -52,38 +52,49 @@ constexpr double feature_length_in_radii_ratio = 4.0;
 /// A vertex is a tip (step 6) when the angle defect summed within the scale exceeds this (radians).
 constexpr double tip_angle_defect = 0.5 * CGAL_PI;
 
+/// The features of a mesh, as detect_features() finds them: the feature edges, the corners and
+/// the feature curves between them (borders included).
 template <class TriangleMesh>
 struct Feature_set
 {
+  /// `boost::graph_traits<TriangleMesh>`
   typedef boost::graph_traits<TriangleMesh> GT;
+  /// the mesh's vertex descriptor
   typedef typename GT::vertex_descriptor vertex_descriptor;
+  /// the mesh's halfedge descriptor
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  /// the mesh's edge descriptor
   typedef typename GT::edge_descriptor edge_descriptor;
 
   /// A feature curve: consecutive halfedges (target of one = source of the next), from a corner
   /// to a corner, or a closed loop without corner (then `closed` and it starts anywhere).
   struct Curve
   {
-    std::vector<halfedge_descriptor> halfedges;
-    bool closed = false;
+    std::vector<halfedge_descriptor> halfedges;   ///< in order along the curve
+    bool closed = false;   ///< a closed loop without corner
     bool border = false;   ///< made of mesh border edges
-    double length = 0;
+    double length = 0;     ///< the curve's length
   };
 
+  /// the corners (the pointed tips are the last `number_of_tips` of them)
   std::vector<vertex_descriptor> corners;
-  std::vector<Curve> curves;
-  std::size_t number_of_feature_edges = 0;
+  std::vector<Curve> curves;   ///< the feature curves
+  std::size_t number_of_feature_edges = 0;   ///< edges on a feature curve (borders included)
   std::size_t number_of_removed_false_features = 0;  ///< edges dropped by the filtering
   std::size_t number_of_tips = 0;                    ///< corners that are pointed tips (step 6)
 
+  /// whether `e` is a feature edge
   bool is_feature(edge_descriptor e) const { return feature_edge[get(eim, e)]; }
+  /// whether `v` is a corner
   bool is_corner(vertex_descriptor v) const { return corner[get(vim, v)]; }
 
   // indexing
+  /// the mesh's edge index map (`feature_edge` is indexed by it)
   typename CGAL::GetInitializedEdgeIndexMap<TriangleMesh>::const_type eim;
+  /// the mesh's vertex index map (`corner` is indexed by it)
   typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type vim;
-  std::vector<bool> feature_edge;
-  std::vector<bool> corner;
+  std::vector<bool> feature_edge;   ///< per edge index: a feature edge
+  std::vector<bool> corner;         ///< per vertex index: a corner
 };
 
 namespace internal {
@@ -493,8 +504,8 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
 template <class TriangleMesh, class Point_3>
 struct Feature_sample
 {
-  CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> location;
-  Point_3 point;
+  CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> location;   ///< on the surface
+  Point_3 point;      ///< its 3D point
   std::size_t curve;  ///< index in Feature_set::curves
 };
 

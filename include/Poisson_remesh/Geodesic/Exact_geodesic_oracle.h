@@ -91,7 +91,7 @@ namespace Poisson_remesh {
 template <class FaceDescriptor, class Point3>
 struct Iso_arc
 {
-  FaceDescriptor face;
+  FaceDescriptor face;   ///< the face that holds the arc
   /// circle center / conic focus: the unfolded (pseudo-)source in the face frame
   std::array<double, 2> center{{0., 0.}};
   /// circle radius, i.e. `R - sigma`; for a conic its semi-latus rectum
@@ -99,6 +99,7 @@ struct Iso_arc
   /// the gradient of the disk radius r(x) in the face (Eq. 3): zero for a circle
   std::array<double, 2> gradient{{0., 0.}};
 
+  /// true for a conic arc (adaptive density), false for a circular one
   bool is_conic() const { return gradient[0] != 0. || gradient[1] != 0.; }
   /// distance from the center to the curve in direction theta
   double rho(double th) const
@@ -115,12 +116,18 @@ struct Iso_arc
   /// geodesic distance from the source to `center` (the pseudo-source)
   double sigma = 0.;
   /// counter-clockwise angular range, `theta_start <= theta_end <= theta_start + 2 pi`
+  /// @{
   double theta_start = 0., theta_end = 0.;
+  /// @}
   /// straight-segment pieces (approximate oracle): endpoints in the face frame
   bool is_segment = false;
+  /// the endpoints of a straight piece (`is_segment`), in the face frame
+  /// @{
   std::array<double, 2> segment_start{{0., 0.}}, segment_end{{0., 0.}};
-  /// 3D positions of v0, v1, v2 and the 2D layout (|v0v1|, x2, y2) of the face
+  /// @}
+  /// 3D positions of v0, v1, v2 of the face
   std::array<Point3, 3> corners;
+  /// the 2D layout (|v0v1|, x2, y2) of the face
   std::array<double, 3> layout{{1., 0., 1.}};
 
   /// point of parameter `t` in [0,1] in the face frame
@@ -187,8 +194,8 @@ struct Iso_arc
 template <class FaceDescriptor, class Point3>
 struct Iso_curve
 {
-  std::vector<Iso_arc<FaceDescriptor, Point3> > arcs;
-  bool closed = false;
+  std::vector<Iso_arc<FaceDescriptor, Point3> > arcs;   ///< the arcs, in order along the curve
+  bool closed = false;   ///< true when the last arc ends where the first one starts
 };
 
 namespace internal {
@@ -534,6 +541,14 @@ struct Interval_set
 // The exact oracle
 // ---------------------------------------------------------------------------
 
+/// Exact polyhedral geodesic distances from a surface point, truncated at a radius (paper
+/// §4.2.2), by window propagation (Mitchell, Mount and Papadimitriou, as simplified by Surazhsky et
+/// al. 2005), and the iso-distance curves of the adaptive rule (§5.1-5.2). A model of the concepts
+/// `GeodesicOracle` and `WindowPropagationGeodesicOracle`. The cost of a propagation follows the
+/// size of the geodesic disk, not of the mesh; storage is allocated once.
+///
+/// `TriangleMesh`: a `FaceGraph` whose faces are triangles; `VertexPointMap`: its points (default:
+/// the internal map); `GeomTraits`: the kernel of the points (default: from `CGAL::Kernel_traits`).
 template <class TriangleMesh,
           class VertexPointMap = typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type,
           class GeomTraits = typename CGAL::Kernel_traits<
@@ -541,14 +556,23 @@ template <class TriangleMesh,
 class Exact_geodesic_oracle
 {
 public:
+  /// `boost::graph_traits<TriangleMesh>`
   typedef boost::graph_traits<TriangleMesh> GT;
+  /// the mesh's vertex descriptor
   typedef typename GT::vertex_descriptor vertex_descriptor;
+  /// the mesh's face descriptor
   typedef typename GT::face_descriptor face_descriptor;
+  /// the mesh's halfedge descriptor
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  /// the kernel
   typedef GeomTraits Geom_traits;
+  /// the point type
   typedef typename GeomTraits::Point_3 Point_3;
+  /// a surface point: a face and barycentric coordinates
   typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  /// a piece of an iso-distance curve inside one face
   typedef Poisson_remesh::Iso_arc<face_descriptor, Point_3> Iso_arc;
+  /// an ordered chain of `Iso_arc`s
   typedef Poisson_remesh::Iso_curve<face_descriptor, Point_3> Iso_curve;
 
   /// Geometry of a window handed to stop predicates (Section 5.2 of the paper).
@@ -557,12 +581,21 @@ public:
   /// `face(halfedge)`, which is the face the window is about to enter.
   struct Window_geometry
   {
-    halfedge_descriptor halfedge;
+    halfedge_descriptor halfedge;  ///< the window lies on its edge and is about to enter its face
     std::array<double, 2> source;  ///< unfolded (pseudo-)source, y <= 0
     double sigma;                  ///< distance from the source to the pseudo-source
-    double b0, b1;                 ///< window extent along the halfedge, 0 <= b0 <= b1 <= length
-    Point_3 p0, p1;                ///< 3D endpoints of the window
+    /// window extent along the halfedge, 0 <= b0 <= b1 <= length
+    /// @{
+    double b0, b1;
+    /// @}
+    /// 3D endpoints of the window
+    /// @{
+    Point_3 p0, p1;
+    /// @}
+    /// the smallest and the largest distance on the window
+    /// @{
     double min_distance, max_distance;
+    /// @}
   };
 
 private:
@@ -589,6 +622,7 @@ public:
   /// Precomputes edge lengths, face layouts and saddle / border vertices.  O(|V| + |F|).
   explicit Exact_geodesic_oracle(const TriangleMesh& tm) : Exact_geodesic_oracle(tm, get(CGAL::vertex_point, tm)) {}
 
+  /// The same with the points of `vpm`.
   Exact_geodesic_oracle(const TriangleMesh& tm, VertexPointMap vpm) : m_tm(tm), m_vpm(vpm), m(tm, vpm)
   {
     m_dist.assign(m.number_of_vertices(), internal::kInf);
@@ -598,6 +632,7 @@ public:
     m_tol = 1e-13 * m.diag;
   }
 
+  /// the mesh (it must outlive the oracle and stay unchanged)
   const TriangleMesh& mesh() const { return m_tm; }
   /// diagonal of the bounding box of the mesh
   double bbox_diagonal() const { return m.diag; }

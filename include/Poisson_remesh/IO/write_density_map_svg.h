@@ -31,7 +31,7 @@ struct Density_map_view
   int axis = -1;
   double width = 640;          ///< picture width in pixels (the height follows the mesh)
   std::string title;           ///< printed at the top
-  std::string value_name = "density";
+  std::string value_name = "density";   ///< the name of the value, in the colour scale's legend
 };
 
 namespace internal {

@@ -22,6 +22,7 @@
 
 namespace Poisson_remesh {
 
+/// Reports with their labels ("input", "remeshed", ...), one column each in the outputs below.
 typedef std::vector<std::pair<std::string, Quality_report>> Labelled_quality_reports;
 
 namespace internal {
@@ -89,7 +90,12 @@ inline void write_quality_table(std::ostream& os, const Labelled_quality_reports
     {"  away from the input's own", [&](const Quality_report& r) {
        return r.number_of_self_intersecting_face_pairs_away_from_reference_ones ? count(*r.number_of_self_intersecting_face_pairs_away_from_reference_ones) : std::string("-"); }},
     {"Hausdorff / diagonal", [](const Quality_report& r) {
-       return r.hausdorff ? format_double(*r.hausdorff, 4) : std::string("-"); }},
+       if(!r.hausdorff) return std::string("-");
+       // (with its error bound when that is coarser than the figure's last digit)
+       std::string text = format_double(*r.hausdorff, 4);
+       if(r.hausdorff_sampled && r.hausdorff_error_bound) text += " (sampled, < +" + format_double(*r.hausdorff_error_bound, 3) + ")";
+       else if(r.hausdorff_error_bound && *r.hausdorff_error_bound > 1e-4) text += " +-" + format_double(*r.hausdorff_error_bound, 4);
+       return text; }},
   };
   std::size_t label_width = 0;
   for(const Row& row : rows) label_width = std::max(label_width, row.first.size());
@@ -152,6 +158,8 @@ inline std::string to_json(const Quality_report& r, const std::string& indent = 
   optional_field("min_angle_away_from_sharp_corners_deg", r.min_angle_away_from_sharp_corners);
   optional_field("hausdorff_over_diagonal", r.hausdorff);
   optional_field("hausdorff_absolute", r.hausdorff_absolute);
+  optional_field("hausdorff_error_bound_over_diagonal", r.hausdorff_error_bound);
+  if(r.hausdorff) os << in << "\"hausdorff_sampled\": " << (r.hausdorff_sampled ? "true" : "false") << ",\n";
   os << in << "\"valence_histogram\": {";
   bool first = true;
   for(const auto& kv : r.valence_histogram) { os << (first ? "" : ", ") << "\"" << kv.first << "\": " << kv.second; first = false; }

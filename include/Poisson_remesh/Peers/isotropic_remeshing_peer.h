@@ -26,19 +26,21 @@
 namespace Poisson_remesh {
 namespace Peers {
 
+/// How isotropic_remeshing_at_vertex_count() drives CGAL's `isotropic_remeshing()`.
 struct Isotropic_remeshing_settings
 {
   double target_vertex_count = 0;   ///< 0: the input's vertex count
   double sharp_angle = 60;          ///< dihedral angle (degrees) over which edges are constrained; <= 0: none
-  unsigned int iterations = 5;
-  unsigned int calibration_runs = 3;
+  unsigned int iterations = 5;      ///< `number_of_iterations` of each `isotropic_remeshing()` call
+  unsigned int calibration_runs = 3; ///< runs at most, the edge length rescaled by sqrt(V / target) after each
 };
 
+/// What isotropic_remeshing_at_vertex_count() did.
 struct Isotropic_remeshing_result
 {
   double edge_length = 0;   ///< the target edge length of the kept run
   double seconds = 0;       ///< time of the kept run (one isotropic_remeshing call, feature detection included)
-  unsigned int runs = 0;
+  unsigned int runs = 0;    ///< `isotropic_remeshing()` calls made (calibration included)
 };
 
 /// Remeshes a copy of `input` into `output` (both triangle meshes of type Mesh).

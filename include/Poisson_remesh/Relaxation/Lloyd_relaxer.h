@@ -48,6 +48,7 @@
 #include <CGAL/boost/graph/copy_face_graph.h>
 
 #include <algorithm>
+#include <functional>
 #include <array>
 #include <map>
 #include <set>
@@ -60,14 +61,18 @@
 
 namespace Poisson_remesh {
 
+/// The rounds and switches of `Lloyd_relaxer::relax()` (angles in degrees): the paper's Lloyd
+/// rounds and flips (§6.2, §6.3), then the operators beyond the paper (see the user manual,
+/// "Beyond the paper"). poisson_remesh() sets `iterations` from the named parameter
+/// `number_of_iterations` and `max_deviation` from `fidelity_tolerance`.
 struct Relaxation_settings
 {
   /// rounds of Lloyd + Delaunay flips + valence flips. The paper finds about 3 enough for the
   /// points; the connectivity keeps improving to about 10 (irregular vertices 35% -> 23% on
   /// fandisk, elephant and knot1), at a cost small beside the sampling.
   unsigned int iterations = 10;
-  bool delaunay_flips = true;
-  bool valence_flips = true;
+  bool delaunay_flips = true;              ///< Delaunay flips after each Lloyd pass
+  bool valence_flips = true;               ///< valence flips (§6.3, Eq. 7-8) after each Lloyd pass
   double max_flip_normal_change = 35;      ///< degrees between the old and the new triangles' normals
   /// a valence flip may not make the smallest angle of its two triangles worse than this ratio
   /// (0.6: about 1% more irregular vertices than 0.3 but 0.6-0.9 degrees more mean smallest angle
@@ -79,11 +84,11 @@ struct Relaxation_settings
   /// then relax `rounds_after_collapse` more rounds: the slivers pinned by corners and feature
   /// samples that no vertex move can mend
   bool collapse_slivers = true;
-  double sliver_angle = 30;
+  double sliver_angle = 30;   ///< a triangle with a smaller angle is a sliver (collapses, refinement)
   /// (0.5; it was 0.45, which left triceratops' triangle of three corners on a toe, two of them
   /// 0.6 spacings apart and the third 1.3 away -- a ratio of 0.452 -- at 26.7 degrees)
   double sliver_edge_ratio = 0.5;
-  unsigned int rounds_after_collapse = 3;
+  unsigned int rounds_after_collapse = 3;   ///< relaxation rounds after the sliver collapses
   /// (beyond the paper) an input vertex farther than this (times the input's bounding-box
   /// diagonal) from the relaxed mesh -- a rim or a crest finer than the sample spacing, cut
   /// across by the triangles -- is inserted there (the nearest triangle split at it), at most
@@ -158,6 +163,8 @@ struct Relaxation_settings
   /// (with untangle_rounds) the smallest angle the triangles of a collapse of the untangling keep
   /// (degrees; 0: no collapse)
   double untangle_collapse_min_angle = 15;
+  /// (with untangle_rounds) the smallest angle the triangles of a move or flip of the untangling
+  /// keep, or what it was if smaller (degrees)
   double untangle_min_angle = 30;
   /// (beyond the paper) a Lloyd move that would make one of the vertex's triangles sharper than
   /// this (degrees) and sharper than they are goes half the way; if that still does, it is
@@ -179,13 +186,20 @@ struct Relaxation_settings
   double optimized_angle = 35;
 };
 
+/// What `Lloyd_relaxer::relax()` did.
 struct Relaxation_statistics
 {
+  /// Lloyd moves made and refused, Delaunay and valence flips, sliver collapses, long-edge splits
+  /// @{
   std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
+  /// @}
   std::size_t angle_moves = 0;   ///< moves of the final angle optimization
   std::size_t fidelity_insertions = 0;   ///< input vertices inserted where the mesh cut across the input
   std::size_t refinement_insertions = 0;   ///< vertices inserted beside triangles still sharper than sliver_angle
-  std::size_t refinement_flips = 0, refinement_removals = 0;   ///< the other changes of the refinement
+  /// the other changes of the refinement: flips and vertex removals
+  /// @{
+  std::size_t refinement_flips = 0, refinement_removals = 0;
+  /// @}
   std::size_t untangle_changes = 0;   ///< moves and flips that left fewer crossing face pairs
 };
 
@@ -257,6 +271,11 @@ std::vector<typename boost::graph_traits<Mesh>::face_descriptor> faces_around(co
 
 } // namespace internal
 
+/// The relaxation of paper §6.2 and §6.3, a model of the concept `Relaxer`: local Lloyd steps with
+/// projection onto the input, Delaunay and valence flips, then the operators beyond the paper
+/// (`Relaxation_settings`). Built on the input mesh and its features; relax() works in place on
+/// a mesh whose vertices lie on the input (the mutual tessellation). `GeomTraits`: the kernel of
+/// the input's points.
 template <class InputMesh, class GeomTraits>
 class Lloyd_relaxer
 {
@@ -297,10 +316,18 @@ public:
     return relax(mesh, is_feature, is_corner, s, No_new_vertex());
   }
 
+  /// `progress(stage, done, total)` is told how far relax() is: "relaxation" for the Lloyd rounds
+  /// (done of `iterations`), "optimization" for the passes after them (done of their number).
+  /// It may throw to stop the relaxation (the mesh is then valid but not finished).
+  void set_progress(std::function<void(const char*, std::size_t, std::size_t)> progress) { progress_ = std::move(progress); }
+
+  /// The `new_vertex` callback of the short relax(): no vertex may be added (no splits,
+  /// insertions or refinement).
   struct No_new_vertex
   {
+    /// does nothing
     template <class V> void operator()(V, bool) const {}
-    static constexpr bool splits = false;
+    static constexpr bool splits = false;   ///< no vertex may be added
   };
 
   /// As above; `new_vertex(v, on_feature)` is called for each vertex the long-edge splits add
@@ -317,6 +344,7 @@ public:
   /// Uniform density for the Lloyd centroids.
   struct Unit_density
   {
+    /// 1 at every vertex
     template <class V> double operator()(V) const { return 1.0; }
   };
 
@@ -347,11 +375,16 @@ public:
         if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats, s.keep_regularity);
       }
     };
+    auto report = [&](const char* stage, std::size_t done, std::size_t total) { if(progress_) progress_(stage, done, total); };
+    // (the passes after the Lloyd rounds, for the progress reports)
+    const std::size_t optimization_steps = 8;
     for(unsigned int it = 0; it < s.iterations; ++it) {
+      report("relaxation", it, s.iterations);
       lloyd_pass(mesh, is_feature, is_corner, stats);
       if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
       if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
     }
+    report("optimization", 0, optimization_steps);
     std::size_t changed = 0;
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
       if(s.long_edge_ratio > 0) changed += split_pass(mesh, is_feature, new_vertex, s, stats);
@@ -369,19 +402,23 @@ public:
         if(s.delaunay_flips) delaunay_pass(mesh, is_feature, s, stats);
         if(s.valence_flips) valence_pass(mesh, is_feature, s, stats);
       }
+    report("optimization", 1, optimization_steps);
     // end on geometry: a last Lloyd pass and Delaunay flips
     lloyd_pass(mesh, is_feature, is_fixed, stats);
     if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     // then every vertex raises the angles of its triangles, and those of the triangles still
     // sharper than sliver_angle (next to vertices that may not move) the smallest angle around them
+    report("optimization", 2, optimization_steps);
     for(unsigned int it = 0; it < s.smoothing_rounds; ++it) {
       if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::sum_of_smallest) == 0) break;
       if(s.delaunay_flips && s.final_delaunay) delaunay_pass(mesh, is_feature, s, stats);
     }
+    report("optimization", 3, optimization_steps);
     for(unsigned int it = 0; it < s.regularity_rounds; ++it) {
       if(regularity_pass(mesh, is_feature, s, stats) == 0) break;
       angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::sum_of_smallest);
     }
+    report("optimization", 4, optimization_steps);
     optimize_angles();
     // the angle moves may cut a crest again: its input vertices are inserted there too
     if constexpr(!std::is_same<NewVertex, No_new_vertex>::value)
@@ -399,6 +436,7 @@ public:
           optimize_angles();
         }
     };
+    report("optimization", 5, optimization_steps);
     refine();
     // a last round of regularity flips whose triangles all keep final_regularity_min_angle; all
     // taken back if one makes the mesh cut itself anew
@@ -427,10 +465,12 @@ public:
         }
       }
     }
+    report("optimization", 6, optimization_steps);
     // then the vertices of the fidelity pass still at such triangles move a little (see angle_pass)
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_rounds; ++it)
         if(angle_pass(mesh, is_feature, is_fixed, s, stats, Angle_goal::smallest, pin_anchor, true) == 0) break;
+    report("optimization", 7, optimization_steps);
     std::size_t collapses = 0;
     for(unsigned int round = 0; round < s.untangle_rounds; ++round)
       if(untangle_pass(mesh, is_feature, is_fixed, s, stats, s.untangle_collapse_min_angle > 0 ? &collapses : nullptr) == 0) break;
@@ -440,19 +480,24 @@ public:
       for(unsigned int round = 0; round < s.untangle_rounds; ++round)
         if(untangle_pass(mesh, is_feature, is_fixed, s, stats) == 0) break;
     }
+    report("optimization", optimization_steps, optimization_steps);
     return stats;
   }
 
+  /// the point of the input surface closest to `p`
   Point_3 project_on_surface(const Point_3& p) const { return faces_.closest_point(p); }
+  /// the point of the input's feature edges closest to `p` (of the surface, without features)
   Point_3 project_on_features(const Point_3& p) const { return segments_.empty() ? project_on_surface(p) : segment_tree_.closest_point(p); }
   /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
   /// project_on_features), near p: the search starts from it instead of a k-d tree query, which
   /// makes projections of moving vertices cheaper (the result is the same closest point).
+  /// @{
   Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return faces_.closest_point(p, hint); }
   Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
   {
     return segments_.empty() ? project_on_surface(p, hint) : segment_tree_.closest_point(p, hint);
   }
+  /// @}
 
 private:
   static double angle(const Point_3& a, const Point_3& o, const Point_3& b)
@@ -1786,8 +1831,11 @@ private:
   }
 
 public:
+  /// the Lloyd step weights each ring triangle's centroid by its area (Eq. 6; the default), or
+  /// all alike (false)
   bool area_weighted_ = true;
 private:
+  std::function<void(const char*, std::size_t, std::size_t)> progress_;
   const InputMesh& input_;
   double diagonal_ = 0;
   Face_tree faces_;

@@ -49,9 +49,9 @@ enum class Sample_kind { corner, feature, surface };
 template <class TriangleMesh, class Point_3>
 struct Poisson_sample
 {
-  CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> location;
-  Point_3 point;
-  Sample_kind kind = Sample_kind::surface;
+  CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> location;   ///< a face and barycentric coordinates
+  Point_3 point;                             ///< its 3D point
+  Sample_kind kind = Sample_kind::surface;   ///< corner, feature-curve or surface sample
   unsigned int level = 0;   ///< the level of detail that added it (0: the first)
   double radius = 0;        ///< its disk radius r (samples p, q are at least r(p) + r(q) apart)
 };
@@ -96,6 +96,16 @@ private:
 
 } // namespace internal
 
+/// The boundary sampler of paper §4.2 (Dunbar and Humphreys' boundary sampling on the surface,
+/// with geodesic distances), a model of the concept `Sampler`: fixed samples first (insert()),
+/// a seed in every component left without one (seed_components()), then samples drawn on the
+/// available boundary until it is empty (fill()), which makes the set maximal. Uniform density
+/// with set_radius() (several calls with decreasing radii: levels of detail), adaptive density with
+/// set_radius_field() (§5). All randomness comes from the seed given at construction.
+///
+/// `GeodesicOracle`: a model of `GeodesicOracle` whose `Iso_arc`s the available boundary
+/// (`Circular_available_boundary`) handles: circular or conic arcs, as those of
+/// `Exact_geodesic_oracle` (the default, and the only model that fits today).
 template <class TriangleMesh,
           class VertexPointMap = typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type,
           class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VertexPointMap>>
@@ -106,15 +116,21 @@ class Boundary_sampler
   typedef typename GT::vertex_descriptor vertex_descriptor;
 
 public:
+  /// the point type
   typedef typename boost::property_traits<VertexPointMap>::value_type Point_3;
+  /// a surface point: a face and barycentric coordinates
   typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  /// a sample
   typedef Poisson_sample<TriangleMesh, Point_3> Sample;
+  /// the oracle's arc type
   typedef typename GeodesicOracle::Iso_arc Arc;
+  /// the available boundary
   typedef Circular_available_boundary<TriangleMesh, Arc> Boundary;
 
   /// Closer than 2r * (1 - separation_tolerance) counts as inside a disk.
   static constexpr double separation_tolerance = 1e-9;
 
+  /// A sampler of `tm` (read through `vpm`, which must outlive the sampler), its draws from `seed`.
   Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed)
     : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), oracle_(tm, vpm), classifier_(tm, vpm),
       boundary_(tm), rng_(seed)
@@ -164,6 +180,7 @@ public:
     boundary_.set_minimum_length(1e-9 * rmin);
     grid_.reset(2 * rmax);
   }
+  /// true after set_radius_field() (adaptive density)
   bool adaptive() const { return !vertex_radius_.empty(); }
 
   /// The disk radius at a surface location (r for uniform density).
@@ -220,7 +237,12 @@ public:
   }
 
   /// Draws samples on the available boundary until it is empty (§4.2, steps 3-5).
-  void fill()
+  void fill() { fill([](std::size_t) {}); }
+
+  /// As fill(); `on_sample(n)` is called after each new sample, with the number of samples so far
+  /// (progress reports; an exception it throws stops the filling, the samples so far kept).
+  template <class OnSample>
+  void fill(OnSample on_sample)
   {
     while(!boundary_.empty()) {
       std::size_t arc = 0;
@@ -241,12 +263,17 @@ public:
         continue;
       }
       add_sample(loc, Sample_kind::surface, false, level_);
+      on_sample(samples_.size());
     }
   }
 
+  /// the samples so far, in the order they were added
   const std::vector<Sample>& samples() const { return samples_; }
+  /// the available boundary (empty when the set is maximal)
   const Boundary& available_boundary() const { return boundary_; }
+  /// counters of the run
   const Sampling_statistics& statistics() const { return stats_; }
+  /// the oracle that propagates each new sample's disk
   GeodesicOracle& oracle() { return oracle_; }
 
   /// A number in [0, 1) from the sampler's generator (53 random bits; the same on every platform).

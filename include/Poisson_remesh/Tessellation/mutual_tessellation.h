@@ -96,8 +96,11 @@ struct Mutual_tessellation_settings
 template <class TriangleMesh>
 struct Mutual_tessellation_result
 {
+  /// the mesh's vertex descriptor
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  /// a point of the input: a face and barycentric coordinates
   typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  /// the `sample` of an output vertex that is no sample (a leftover input vertex)
   static constexpr std::size_t no_sample = std::size_t(-1);
 
   /// One output vertex: the sample it is (no_sample for a leftover original vertex) and where it
@@ -117,17 +120,19 @@ struct Mutual_tessellation_result
   /// (i, j): sample i fell on the vertex of sample j and was merged into it (only seen inside
   /// nearly zero-area input faces); sample_vertices[i] is that of j
   std::vector<std::pair<std::size_t, std::size_t>> merged_samples;
-  std::size_t number_of_flips = 0;
+  std::size_t number_of_flips = 0;                  ///< flips that raised the smallest angle (§6.1)
   std::size_t number_of_repair_flips = 0;           ///< flips that removed self-intersections (last step)
-  std::size_t number_of_removed_vertices = 0;
-  std::size_t number_of_removal_passes = 0;
+  std::size_t number_of_removed_vertices = 0;       ///< input vertices removed
+  std::size_t number_of_removal_passes = 0;         ///< passes of removals and flips
   std::size_t number_of_collapsed_vertices = 0;     ///< original vertices removed by a collapse (fallback)
   std::size_t number_of_refused_removals = 0;       ///< attempts refused (a vertex may be tried again)
   /// why the last pass (and the retry after the repair) refused the leftovers: a star that is
   /// not a simple (half) disk (repeated ring vertex, feature degree not 2, two border fans), the
   /// feature edge already there, a pocket (the ring triangle already a face), no triangulation
   /// of a side without an existing edge or a fold-over.
+  /// @{
   std::size_t refused_star = 0, refused_feature_edge = 0, refused_pocket = 0, refused_triangulation = 0;
+  /// @}
 };
 
 

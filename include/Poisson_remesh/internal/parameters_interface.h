@@ -30,8 +30,14 @@ POISSON_REMESH_add_named_parameter(regrading_attempts_t, regrading_attempts, reg
 
 // input reading and validation
 POISSON_REMESH_add_named_parameter(repair_degenerate_faces_t, repair_degenerate_faces, repair_degenerate_faces)
+POISSON_REMESH_add_named_parameter(repair_non_manifold_vertices_t, repair_non_manifold_vertices, repair_non_manifold_vertices)
+POISSON_REMESH_add_named_parameter(strict_input_t, strict_input, strict_input)
+
+// long runs: progress reports and cancellation (progress.h; CGAL's `callback` is read too)
+POISSON_REMESH_add_named_parameter(progress_t, progress, progress)
 
 // quality report
 POISSON_REMESH_add_named_parameter(check_self_intersections_t, check_self_intersections, check_self_intersections)
 POISSON_REMESH_add_named_parameter(angle_histogram_bin_width_t, angle_histogram_bin_width, angle_histogram_bin_width)
 POISSON_REMESH_add_named_parameter(hausdorff_relative_error_bound_t, hausdorff_relative_error_bound, hausdorff_relative_error_bound)
+POISSON_REMESH_add_named_parameter(sampled_hausdorff_t, sampled_hausdorff, sampled_hausdorff)
