@@ -8,7 +8,7 @@
 //
 // usage: remesh_benchmark [--meshes fandisk,triceratops,...] [--factor F] [--contenders a,b]
 //                         [--markdown FILE] [--json FILE]   (tables on stdout; files only when named)
-#include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
+#include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/read_surface_mesh.h>

@@ -19,7 +19,7 @@
 
 #include <Poisson_remesh/IO/write_density_map_svg.h>
 #include <Poisson_remesh/IO/write_quality_report.h>
-#include <Poisson_remesh/Peers/isotropic_remeshing_peer.h>
+#include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/progress.h>
 #include <Poisson_remesh/quality_report.h>
@@ -243,7 +243,10 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
     if(o.method == "poisson") {
       say << "Poisson-disk remeshing of " << in << " (" << num_vertices(input) << " vertices) to about "
           << std::llround(target) << " vertices ... " << std::flush;
-      std::function<bool(const PR::Progress&)> on_progress = [&](const PR::Progress& p) { return progress(p); };
+      // (always the same parameter type, empty without progress: each density type instantiates
+      // the whole remesher once, which is most of this program's compile time)
+      std::function<bool(const PR::Progress&)> on_progress;
+      if(progress.on()) on_progress = [&](const PR::Progress& p) { return progress(p); };
       const auto remesh_start = std::chrono::steady_clock::now();
       const PR::Poisson_remesh_result run = with_density([&](const auto& field) {
         auto params = PR::parameters::target_vertex_count(std::size_t(std::llround(target)))
@@ -255,8 +258,8 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
             .feature_grading(o.grading)
             .regrading_attempts(unsigned(o.regrading >= 0 ? o.regrading : o.density.adaptive || !o.density.density_file.empty() ? 0 : 6))
             .strict_input(o.strict)
-            .density(field);
-        if(progress.on()) return PR::poisson_remesh(input, output, params.progress(on_progress));
+            .density(field)
+            .progress(on_progress);
         return PR::poisson_remesh(input, output, params);
       });
       row.seconds_remesh = seconds_since(remesh_start);

@@ -18,6 +18,7 @@
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -168,16 +169,33 @@ void drop_feature_curves(Feature_set<TriangleMesh>& fs, std::vector<std::size_t>
 // tessellation)
 // (vertex_radii not empty: adaptive density, the disk radius at each vertex by vertex index;
 // `radius` is then their median)
-template <class TriangleMesh, class VPM, class OutputIterator>
+// A named parameter's value: CGAL keeps an object it cannot copy (a relaxer with its trees) as a
+// std::reference_wrapper
+template <class T> const T& unwrap(const T& t) { return t; }
+template <class T> T& unwrap(const std::reference_wrapper<T>& t) { return t.get(); }
+
+// The geodesic oracle the named parameters give (`geodesic_oracle`: a model of GeodesicOracle
+// built on tm, copied), else an Exact_geodesic_oracle; f(oracle) is called with it.
+template <class TriangleMesh, class VPM, class NamedParameters, class F>
+decltype(auto) with_geodesic_oracle(const TriangleMesh& tm, VPM vpm, const NamedParameters& np, F f)
+{
+  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::geodesic_oracle_t>::value)
+    return f(Exact_geodesic_oracle<TriangleMesh, VPM>(tm, vpm));
+  else
+    return f(unwrap(parameters::get_parameter(np, internal_np::geodesic_oracle)));
+}
+
+template <class TriangleMesh, class VPM, class OutputIterator, class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VPM>>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
                                                  double radius, unsigned int seed, OutputIterator out,
                                                  const std::vector<double>& vertex_radii = std::vector<double>(),
                                                  std::vector<std::size_t>* crowded_curves = nullptr,
-                                                 Progress_reporter* progress = nullptr)
+                                                 Progress_reporter* progress = nullptr,
+                                                 const GeodesicOracle* oracle = nullptr)
 {
   Poisson_disk_sampling_result result;
   result.radius = result.min_radius = result.max_radius = radius;
-  Boundary_sampler<TriangleMesh, VPM> sampler(tm, vpm, seed);
+  Boundary_sampler<TriangleMesh, VPM, GeodesicOracle> sampler(tm, vpm, seed, oracle ? *oracle : GeodesicOracle(tm, vpm));
   if(vertex_radii.empty()) {
     sampler.set_radius(result.radius);
   } else {
@@ -214,6 +232,26 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
 } // namespace internal
 
 /*!
+  The default model of the `Sampler` concept of poisson_remesh() (named parameter `sampler`):
+  geodesic Poisson-disk boundary sampling (§4, §5), the features first -- what
+  poisson_disk_sample() does, on features already detected and with the disk radius given.
+*/
+struct Poisson_disk_sampler
+{
+  /// writes to `out` the samples (`Poisson_sample<TriangleMesh, Point_3>`) of `tm` read through
+  /// `vpm`: the corners and feature-curve points of `features` first, then a maximal set at
+  /// disk radius `radius` (or, when `vertex_radii` is not empty, at the radius `vertex_radii[i]`
+  /// at the vertex of index i of `CGAL::get_initialized_vertex_index_map(tm)`), drawn from `seed`
+  template <class TriangleMesh, class VertexPointMap, class OutputIterator>
+  Poisson_disk_sampling_result operator()(const TriangleMesh& tm, VertexPointMap vpm, const Feature_set<TriangleMesh>& features,
+                                          double radius, const std::vector<double>& vertex_radii, unsigned int seed,
+                                          OutputIterator out) const
+  {
+    return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii);
+  }
+};
+
+/*!
   computes a maximal geodesic Poisson-disk sample set of `tm` (a triangle mesh, any FaceGraph)
   and writes its `Poisson_sample`s (location, point, kind) to `out`.
 
@@ -228,6 +266,8 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
     `corner_angle` (60), `minimum_feature_length` (default feature_length_in_radii * r),
     `edge_is_constrained_map` (CGAL; implies Feature_policy::user_map)
   - `vertex_point_map` (CGAL)
+  - `geodesic_oracle`: a model of `GeodesicOracle` built on `tm` and read through the same point
+    map (default: an `Exact_geodesic_oracle`); the sampler works on a copy of it
   - `progress` (a callable `bool(const Progress&)`) and `callback` (CGAL; `bool(double)`): told
     how far the sampling is; returning false stops it with Cancelled (progress.h)
 */
@@ -248,7 +288,9 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputI
   progress("features", 0, 1);
   const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(tm, radius, np);
   progress.set_span(0.05, 1.0);
-  return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii, nullptr, &progress);
+  return internal::with_geodesic_oracle(tm, vpm, np, [&](const auto& oracle) {
+    return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii, nullptr, &progress, &oracle);
+  });
 }
 
 

@@ -20,7 +20,12 @@
 #include <Poisson_remesh/poisson_disk_sample.h>
 #include <Poisson_remesh/progress.h>
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Kernel_traits.h>
+#include <boost/property_map/function_property_map.hpp>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
@@ -30,6 +35,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -79,6 +85,40 @@ struct Poisson_remesh_result
 
 namespace internal {
 
+// The closest point of the input's feature curves (of its surface when it has none): what tells
+// an output edge between feature samples or corners that follows a curve from one that cuts across.
+template <class TriangleMesh, class K>
+class Feature_projector
+{
+  typedef typename K::Point_3 Point_3;
+  typedef typename K::Segment_3 Segment_3;
+  typedef typename std::vector<Segment_3>::const_iterator Iterator;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, Iterator>>> Segment_tree;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<TriangleMesh>>> Face_tree;
+
+public:
+  // (`tm` read through its own point map)
+  Feature_projector(const TriangleMesh& tm, const Feature_set<TriangleMesh>& features)
+  {
+    const auto vpm = get(CGAL::vertex_point, tm);
+    for(auto e : edges(tm))
+      if(features.is_feature(e)) segments_.emplace_back(get(vpm, source(halfedge(e, tm), tm)), get(vpm, target(halfedge(e, tm), tm)));
+    if(!segments_.empty()) {
+      segment_tree_.insert(segments_.begin(), segments_.end());
+      segment_tree_.accelerate_distance_queries();
+    } else {
+      face_tree_.insert(faces(tm).first, faces(tm).second, tm);
+      face_tree_.accelerate_distance_queries();
+    }
+  }
+  Point_3 project(const Point_3& p) const { return segments_.empty() ? face_tree_.closest_point(p) : segment_tree_.closest_point(p); }
+
+private:
+  std::vector<Segment_3> segments_;
+  Segment_tree segment_tree_;
+  Face_tree face_tree_;
+};
+
 // poisson_remesh() on an input without zero-area faces; `input` is read through the
 // vertex_point_map of `np` (if any)
 template <class TriangleMesh, class NamedParameters>
@@ -117,8 +157,10 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   // (a posteriori) the remesh is made again, finer where its result still cuts itself or keeps
   // triangles under 30 degrees (internal/regrading.h); the best one is kept
   // (by default only for a uniform density and the default relaxer: an adaptive density is the
-  // user's choice of where to be finer, and a user's relaxer may not aim at 30 degrees)
-  const bool regrading_by_default = vertex_radii.empty() && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
+  // user's choice of where to be finer, a user's relaxer may not aim at 30 degrees, and a user's
+  // sampler may not follow the finer radii)
+  const bool regrading_by_default = vertex_radii.empty() && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value &&
+                                    parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
   const unsigned int regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), regrading_by_default ? 6u : 0u);
   const internal::Regrading_settings regrading;
   std::optional<internal::Reference_crossings<TriangleMesh>> input_crossings;   // (found when first needed)
@@ -148,7 +190,16 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     // (the shares of the run, for CGAL's callback: sampling, tessellation, relaxation; each
     // remake spans the whole range again)
     progress.set_span(0.02, 0.3);
-    result.sampling = internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress);
+    if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value) {
+      result.sampling = internal::with_geodesic_oracle(input, in_vpm, np, [&](const auto& oracle) {
+        return internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress, &oracle);
+      });
+    } else {   // the user's model of the Sampler concept
+      const Feature_set<TriangleMesh>& fs = features;
+      result.sampling = internal::unwrap(get_parameter(np, internal_np::sampler))(input, in_vpm, fs, radius, static_cast<const std::vector<double>&>(radii),
+                                                                attempt_seed, std::back_inserter(samples));
+      result.sampling.number_of_samples = samples.size();
+    }
     // a feature curve that runs closer than a spacing beside another (its samples refused in a
     // row) is no feature of the output: its samples are surface samples already
     result.number_of_dropped_feature_curves = crowded.size();
@@ -172,15 +223,8 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     for(const auto& v : tessellation.vertices)
       if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
     auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
-    Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+    const internal::Feature_projector<TriangleMesh, K> features_of_input(input, features);
     progress.set_span(0.4, 1.0);
-    if(progress.active())
-      relaxer.set_progress([&](const char* stage, std::size_t done, std::size_t total) {
-        // (the Lloyd rounds take about half of the relaxation, the passes after them the rest)
-        const bool lloyd = stage[0] == 'r';
-        progress.set_span(lloyd ? 0.4 : 0.7, lloyd ? 0.7 : 1.0);
-        progress(stage, done, total);
-      });
     auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
     // an output feature edge joins two feature (or corner) samples along an input feature curve
     auto is_feature = [&](edge_descriptor e) {
@@ -189,7 +233,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
       if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
       const Point_3 mid = CGAL::midpoint(point(a), point(b));
-      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, relaxer.project_on_features(mid)));
+      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, features_of_input.project(mid)));
       if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
       // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
       // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
@@ -225,31 +269,42 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
     settings.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.max_deviation);
     if(!(settings.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
+    // the sampling density at each vertex, for the Eq. 6 weights (Eq. 1: ~ 1 / r^2 at each sample's
+    // radius; 1 for a uniform density); a vertex the relaxer adds takes its neighbours' mean
+    auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
+    for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
+    for(const auto& v : tessellation.vertices)
+      if(v.sample != tessellation.no_sample)
+        put(density_map, v.vertex, radii.empty() ? 1.0 : 1.0 / (samples[v.sample].radius * samples[v.sample].radius));
+    auto density = [&](vertex_descriptor v) {
+      const double d = get(density_map, v);
+      if(d > 0) return d;
+      double sum = 0;
+      int n = 0;
+      if(halfedge(v, output) != boost::graph_traits<TriangleMesh>::null_halfedge())
+        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, output), output))
+          if(get(density_map, w) > 0) { sum += get(density_map, w); ++n; }
+      const double mean = n ? sum / n : 1.0;
+      put(density_map, v, mean);
+      return mean;
+    };
     if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
-      if(radii.empty()) {
-        result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
-      } else {
-        // adaptive density (or graded): Eq. 6 weights with the density at the samples (Eq. 1: ~ 1 / r^2);
-        // vertices the relaxer adds take the mean of their neighbours
-        auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
-        for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
-        for(const auto& v : tessellation.vertices)
-          if(v.sample != tessellation.no_sample) put(density_map, v.vertex, 1.0 / (samples[v.sample].radius * samples[v.sample].radius));
-        auto density = [&](vertex_descriptor v) {
-          const double d = get(density_map, v);
-          if(d > 0) return d;
-          double sum = 0;
-          int n = 0;
-          for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, output), output))
-            if(get(density_map, w) > 0) { sum += get(density_map, w); ++n; }
-          const double mean = n ? sum / n : 1.0;
-          put(density_map, v, mean);
-          return mean;
-        };
-        result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
-      }
-    } else {   // the user's model of the Relaxer concept
-      result.relaxation = get_parameter(np, internal_np::relaxer).relax(output, is_feature, is_fixed, settings, new_vertex);
+      Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+      if(progress.active())
+        relaxer.set_progress([&](const char* stage, std::size_t done, std::size_t total) {
+          // (the Lloyd rounds take about half of the relaxation, the passes after them the rest)
+          const bool lloyd = stage[0] == 'r';
+          progress.set_span(lloyd ? 0.4 : 0.7, lloyd ? 0.7 : 1.0);
+          progress(stage, done, total);
+        });
+      // (a uniform density: the relaxer's unit weights; adaptive or graded: the density above)
+      if(radii.empty()) result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
+      else result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
+    } else {   // the user's model of the Relaxer concept: the maps and the density
+      result.relaxation = internal::unwrap(get_parameter(np, internal_np::relaxer)).relax(
+        input, in_vpm, output, boost::make_function_property_map<edge_descriptor, bool>(is_feature),
+        boost::make_function_property_map<vertex_descriptor, bool>(is_fixed),
+        boost::make_function_property_map<vertex_descriptor, double>(density), settings.iterations, new_vertex);
     }
     internal::collect_garbage(output);
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
@@ -287,8 +342,11 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
 } // namespace internal
 
 /*!
-  remeshes `input` (a closed or open triangle mesh) into `output` (cleared first; a
-  `Surface_mesh` output has no removed elements left: its garbage is collected).
+  remeshes `input` (a closed or open triangle mesh, any `FaceListGraph`) into `output` (any
+  `MutableFaceGraph`, of the input's type or another; cleared first; a `Surface_mesh` output has
+  no removed elements left: its garbage is collected). The output's vertices lie on the surface
+  that `vertex_point_map` describes. With a user `vertex_point_map`, an output of another type or
+  zero-area faces to remove, the stages run on a copy of the input in the output's type.
 
   Named parameters: those of poisson_disk_sample() (size: `target_vertex_count`,
   `target_edge_length`, `sampling_radius`; `random_seed`; features: `feature_policy`,
@@ -308,14 +366,18 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   under 30 degrees away from the input's sharp corners -- an input crumpled finer than the
   spacing -- is remeshed again, at most this many times, with the sampling finer around the
   places at fault and a new draw; the best result is kept: see internal/regrading.h) and
-  `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features),
+  `sampler` (a model of the Sampler concept, default Poisson_disk_sampler: see
+  doc/Poisson_remesh/Concepts/Sampler.h), `geodesic_oracle` (the default sampler's oracle, a model of
+  GeodesicOracle built on `input`),
+  `relaxer` (a model of the Relaxer concept, default Lloyd_relaxer on the input and its features;
+  see doc/Poisson_remesh/Concepts/Relaxer.h),
   `progress` and `callback` (CGAL) (told how far the run is; returning false stops it with
   Cancelled: see progress.h) and `strict_input` (default false: zero-area input faces are
   removed, on a copy of the input, before remeshing, and counted in
   `Poisson_remesh_result::number_of_repaired_faces`; true: such input throws std::invalid_argument).
 */
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& output,
+template <class InputMesh, class OutputMesh, class NamedParameters = parameters::Default_named_parameters>
+Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
                                      const NamedParameters& np = parameters::default_values())
 {
   namespace PMP = CGAL::Polygon_mesh_processing;
@@ -328,26 +390,42 @@ Poisson_remesh_result poisson_remesh(const TriangleMesh& input, TriangleMesh& ou
   std::size_t degenerate = 0;
   for(auto f : faces(input))
     if(PMP::is_degenerate_triangle_face(f, input, CGAL::parameters::vertex_point_map(in_vpm))) ++degenerate;
-  if(degenerate == 0) return internal::poisson_remesh_impl(input, output, np);
-  if(choose_parameter(get_parameter(np, internal_np::strict_input), false))
+  if(degenerate > 0 && choose_parameter(get_parameter(np, internal_np::strict_input), false))
     throw std::invalid_argument("poisson_remesh: the input has " + std::to_string(degenerate) +
                                 " zero-area faces (strict_input: not repaired)");
-  TriangleMesh repaired;
-  CGAL::copy_face_graph(input, repaired, CGAL::parameters::vertex_point_map(in_vpm));
-  PMP::remove_degenerate_faces(repaired);
-  const std::size_t split = PMP::duplicate_non_manifold_vertices(repaired);
-  std::size_t left = 0;
-  for(auto f : faces(repaired))
-    if(PMP::is_degenerate_triangle_face(f, repaired)) ++left;
-  if(left > 0 || faces(repaired).empty() || !CGAL::is_valid_polygon_mesh(repaired))
-    throw std::invalid_argument("poisson_remesh: the input's " + std::to_string(degenerate) +
-                                " zero-area faces could not all be removed");
-  internal::collect_garbage(repaired);
-  Poisson_remesh_result result =
-    internal::poisson_remesh_impl(repaired, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, repaired)));
-  result.number_of_repaired_faces = degenerate;
-  result.number_of_split_vertices = split;
-  return result;
+  // The stages read the input through its own point map and build the output in the input's
+  // type. The input is used as it is when that fits; otherwise the stages run on a copy of it in
+  // the output's type, read through the user's point map: a user vertex_point_map (every stage
+  // then sees the surface it describes), an output of another type, or faces to repair.
+  constexpr bool same_type = std::is_same<InputMesh, OutputMesh>::value;
+  constexpr bool own_points = parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_point_t>::value;
+  if constexpr(same_type && own_points)
+    if(degenerate == 0) return internal::poisson_remesh_impl(input, output, np);
+  // (a user's geodesic oracle is built on the input itself: it cannot follow a copy)
+  if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::geodesic_oracle_t>::value) {
+    throw std::invalid_argument("poisson_remesh: a geodesic_oracle works on the input itself: give no vertex_point_map "
+                                "of your own, an output of the input's type and an input without zero-area faces");
+  } else {
+    OutputMesh work;
+    CGAL::copy_face_graph(input, work, CGAL::parameters::vertex_point_map(in_vpm));
+    std::size_t split = 0;
+    if(degenerate > 0) {
+      PMP::remove_degenerate_faces(work);
+      split = PMP::duplicate_non_manifold_vertices(work);
+      std::size_t left = 0;
+      for(auto f : faces(work))
+        if(PMP::is_degenerate_triangle_face(f, work)) ++left;
+      if(left > 0 || faces(work).empty() || !CGAL::is_valid_polygon_mesh(work))
+        throw std::invalid_argument("poisson_remesh: the input's " + std::to_string(degenerate) +
+                                    " zero-area faces could not all be removed");
+      internal::collect_garbage(work);
+    }
+    Poisson_remesh_result result =
+      internal::poisson_remesh_impl(work, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, work)));
+    result.number_of_repaired_faces = degenerate;
+    result.number_of_split_vertices = split;
+    return result;
+  }
 }
 
 } // namespace Poisson_remesh

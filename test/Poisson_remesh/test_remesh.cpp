@@ -357,11 +357,11 @@ namespace {
 struct Counting_relaxer
 {
   int* calls;
-  template <class M, class F, class X, class N>
-  PR::Relaxation_statistics relax(M&, F, X, const PR::Relaxation_settings& s, N) const
+  template <class In, class InVPM, class M, class F, class X, class D, class N>
+  PR::Relaxation_statistics relax(const In&, InVPM, M&, F, X, D, unsigned int iterations, N) const
   {
     ++*calls;
-    CHECK(s.iterations == 2u);   // number_of_iterations reaches the relaxer
+    CHECK(iterations == 2u);   // number_of_iterations reaches the relaxer
     return {};
   }
 };

@@ -16,6 +16,10 @@ new sample's curve updates it, until it is empty: then the samples form a maxima
 With adaptive density (§5.1) the curve of a sample p is where d(p, x) = r(p) + r(x) and the
 region is {x : d(p, x) < r(p) + r(x)}; its pieces are conic arcs.
 
+It is the fourth template parameter of `Poisson_remesh::Boundary_sampler` (default
+`Circular_available_boundary<TriangleMesh, GeodesicOracle::Iso_arc>`), which calls exactly the
+members below.
+
 \cgalHasModel `Poisson_remesh::Circular_available_boundary<TriangleMesh, Arc>` (uniform density:
 the circular `Iso_arc`s of `Exact_geodesic_oracle`; adaptive density: its conic `Iso_arc`s, those
 with a non-zero `gradient`, whose crossings it finds numerically)
@@ -38,8 +42,13 @@ public:
   /// removes every arc (a new level of detail starts from scratch)
   void clear();
 
-  /// a point drawn uniformly by arc length; `u01()` returns uniform numbers in [0, 1)
-  template <class Uniform01> Face_location pick(Uniform01&& u01);
+  /// a point drawn uniformly by arc length; `u01()` returns uniform numbers in [0, 1); `arc`
+  /// receives the index of the arc it lies on (for remove_arc())
+  template <class Uniform01> Face_location pick(Uniform01&& u01, std::size_t& arc);
+  /// removes the arc of index `arc` (one that gives no usable sample point)
+  void remove_arc(std::size_t arc);
+  /// arcs shorter than `length` are not stored (the sampler sets 1e-9 r)
+  void set_minimum_length(double length);
 
   /// Adds the iso-curve `chains` (ordered chains of arcs, as `GeodesicOracle::iso_curve()` returns
   /// them) of a new sample `sample`: stored arcs inside the new disk are cut away, and the parts of

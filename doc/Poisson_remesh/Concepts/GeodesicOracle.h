@@ -30,8 +30,16 @@ and `v2` in the upper half plane.  Barycentric coordinates of face locations
 refer to `(v0, v1, v2)` in this order (the convention of
 `CGAL::Polygon_mesh_processing::Face_location`).
 
+The sampler (`Boundary_sampler`, and through it `poisson_disk_sample()` and `poisson_remesh()`
+with the named parameter `geodesic_oracle`) calls exactly the members below, and keeps copies of
+the oracle it is given (a model is `CopyConstructible`; the copies propagate independently).
+`iso_curve(r0, vertex_radius)` is needed for adaptive density only.
+
+`Poisson_remesh::Approximate_geodesic_oracle` answers the same distance queries cheaply, but its
+iso-curves are straight segments, which the circular available boundary does not take: it is not
+a model of this concept (not for the sampler).
+
 \cgalHasModel `Poisson_remesh::Exact_geodesic_oracle<TriangleMesh, VertexPointMap, GeomTraits>`
-\cgalHasModel `Poisson_remesh::Approximate_geodesic_oracle<TriangleMesh, VertexPointMap, GeomTraits>`
 */
 class GeodesicOracle
 {
@@ -122,6 +130,13 @@ public:
   /// propagation radius): one closed chain per connected component, or open
   /// chains ending on the mesh border.
   std::vector<Iso_curve> iso_curve(double R) const;
+
+  /// adaptive density (§5.1, Eq. 4-5): the curve of the points x with
+  /// d(x) = r0 + r(x), r linear inside each face from `vertex_radius(v)` at its
+  /// vertices (conic arcs, `Iso_arc::gradient` not zero); the propagation radius
+  /// must be at least r0 + max r(x) over the region d(x) <= r0 + r(x).
+  template <class VertexRadius>
+  std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const;
 
   /// @}
 };

@@ -8,28 +8,41 @@
 \cgalConcept
 
 A `Relaxer` improves, in place, a triangle mesh whose vertices lie on the input surface (the
-mutual tessellation of the samples): it may move vertices (keeping them on the input surface),
-flip edges, and add or remove vertices, but it never moves a fixed vertex, never flips a feature
-edge, keeps feature vertices on the input's feature curves and keeps the mesh's topology. It is
-passed to `poisson_remesh()` with the named parameter `relaxer`; it is constructed by the user
-(typically on the input mesh and its `Feature_set`).
+mutual tessellation of the samples). It may move vertices (keeping them on the input surface),
+flip edges, and add or remove vertices; it should never move a fixed vertex, never flip a feature
+edge, keep feature vertices on the input's feature curves and keep the mesh's topology. It is
+passed to `poisson_remesh()` with the named parameter `relaxer`, constructed by the user; the
+remesher calls relax() once per attempt with everything it knows, as property maps: the interface
+does not depend on the default model's settings.
 
-\cgalHasModel `Poisson_remesh::Lloyd_relaxer<InputMesh, GeomTraits>`
+With a user's relaxer the remesher does not remake a failed result (`regrading_attempts`
+defaults to 0: a remake aims at 30 degrees, which a user's relaxer may not) unless asked; the
+remakes, when asked for, work with it as with the default.
+
+\cgalHasModel `Poisson_remesh::Lloyd_relaxer<InputMesh, GeomTraits>` (the default; its
+`Relaxation_settings` are its own business: the member `settings`)
 */
 class Relaxer
 {
 public:
-  /// Relaxes `mesh`.
-  /// - `is_feature(e)`: whether the edge `e` of `mesh` lies on a feature curve of the input
-  ///   (never flipped; its ends slide along the curve);
-  /// - `is_fixed(v)`: whether the vertex `v` must not move (a corner, a tip, an input vertex the
-  ///   tessellation could not remove);
-  /// - `settings`: rounds and switches (`Relaxation_settings`; `iterations` comes from the named
-  ///   parameter `number_of_iterations`);
+  /// Relaxes `mesh`, whose vertices lie on the surface of `input` read through `input_vpm` (the
+  /// mesh the remesher works on: the user's input, or a copy of it in the output's type).
+  /// - `is_feature`: readable property map, `edge_descriptor` of `Mesh` -> `bool`: the edge lies
+  ///   on a feature curve of the input (never flipped; its ends slide along the curve);
+  /// - `is_fixed`: readable property map, `vertex_descriptor` -> `bool`: the vertex must not move
+  ///   (a corner, a pointed tip, an input vertex the tessellation could not remove);
+  /// - `density`: readable property map, `vertex_descriptor` -> `double` > 0: the sampling
+  ///   density at the vertex, for the weights of Eq. 6: 1 everywhere for a uniform density; else
+  ///   1 / r^2 at the disk radius r of the vertex's sample (Eq. 1), adaptive density or the finer
+  ///   sampling around pointed tips (`feature_grading`); a vertex without a sample takes its
+  ///   neighbours' mean;
+  /// - `iterations`: the rounds asked for (named parameter `number_of_iterations`, default 10);
   /// - `new_vertex(v, on_feature)`: to be called for each vertex the relaxer adds (on a feature
   ///   curve or not), so that `is_feature` and `is_fixed` answer for it afterwards.
-  /// Returns what it did.
-  template <class Mesh, class IsFeatureEdge, class IsFixed, class NewVertex>
-  Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsFixed is_fixed,
-                              const Relaxation_settings& settings, NewVertex new_vertex) const;
+  /// Returns what it did (`Poisson_remesh::Relaxation_statistics`, counters that may stay 0).
+  template <class InputMesh, class InputVertexPointMap, class Mesh, class EdgeIsFeatureMap, class VertexIsFixedMap,
+            class VertexDensityMap, class NewVertex>
+  Poisson_remesh::Relaxation_statistics relax(const InputMesh& input, InputVertexPointMap input_vpm, Mesh& mesh,
+                                              EdgeIsFeatureMap is_feature, VertexIsFixedMap is_fixed,
+                                              VertexDensityMap density, unsigned int iterations, NewVertex new_vertex) const;
 };

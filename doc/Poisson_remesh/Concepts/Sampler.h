@@ -1,47 +1,49 @@
 // Concept documentation (pseudo-class, not compiled).
 //
-// The sampler of "Direct Sampling on Surfaces for High Quality Remeshing", §4.2 (uniform),
-// §4.2.4 (features first) and §8 (progressive levels of detail).
+// The sampling stage of "Direct Sampling on Surfaces for High Quality Remeshing": §4.2 (uniform),
+// §4.2.4 (features first), §5 (adaptive density).
 
 /*!
 \ingroup PkgPoissonRemeshConcepts
 \cgalConcept
 
-A `Sampler` produces a maximal geodesic Poisson-disk set on a triangle mesh: fixed samples first
-(corners and feature-curve points), a seed in every component left without one, then samples
-drawn on the available boundary (a `BoundaryCurve`) until it is empty, each with its geodesic
-disk computed by a `GeodesicOracle`. All randomness comes from the seed given at construction.
+A `Sampler` places the vertices of a remesh on the input surface: `poisson_remesh()` calls it once
+per attempt (named parameter `sampler`), then tessellates the input with its samples (§6.1) and
+relaxes the result (§6.2-6.3).
 
-\cgalHasModel `Poisson_remesh::Boundary_sampler<TriangleMesh, VertexPointMap, GeodesicOracle>`
+What the remesher expects, and what it does when a sampler does not deliver it:
+- every sample lies on the input (a face location, and its point); samples of kind
+  `Sample_kind::corner` at the corners of `features` and of kind `Sample_kind::feature` on its
+  feature curves keep those features in the output: a curve without feature samples is not kept as
+  a feature, and a corner without a corner sample is cut;
+- samples are about twice the disk radius apart (the radius, or the per-vertex radii, given):
+  samples at the same point are merged by the tessellation
+  (`Poisson_remesh_result::number_of_merged_samples`); samples much closer than the spacing make
+  short edges that the relaxation spreads out, and gaps much wider make large triangles that the
+  relaxation's fidelity insertions fill only where the mesh leaves the input;
+- each component of the input has at least one sample, or it is left out of the output.
+With a user's sampler the remesher does not remake a failed result (`regrading_attempts` defaults
+to 0), since a remake asks for finer radii that the sampler may not follow.
+
+\cgalHasModel `Poisson_remesh::Poisson_disk_sampler` (the default: maximal geodesic Poisson-disk
+boundary sampling, corners and feature curves first; it uses a `GeodesicOracle` and a
+`BoundaryCurve` through `Poisson_remesh::Boundary_sampler`)
 */
 class Sampler
 {
 public:
-  /// `Poisson_remesh::Poisson_sample<TriangleMesh, Point_3>`: location on the input, point, kind, level
-  typedef unspecified_type Sample;
-  /// `CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double>`: a face and barycentric
-  /// coordinates
-  typedef unspecified_type Face_location;
-
-  /// a sampler of the surface `tm` (read through `vpm`), all its random draws from `seed`
-  Sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed);
-
-  /// sets the expellant-disk radius r (samples >= 2r apart); a smaller radius than the current one
-  /// starts a new level of detail that keeps every existing sample
-  void set_radius(double r);
-  /// the current disk radius r
-  double radius() const;
-
-  /// inserts a sample whatever the available boundary says (corners, feature points); with
-  /// `require_separation`, refuses a location closer than 2r to an earlier sample
-  bool insert(const Face_location& loc, Sample_kind kind, bool require_separation);
-  /// one random sample in every connected component that has none
-  void seed_components();
-  /// draws samples on the available boundary until it is empty
-  void fill();
-
-  /// the samples so far, in the order they were added
-  const std::vector<Sample>& samples() const;
-  /// counters of the run (`Poisson_remesh::Sampling_statistics`)
-  const Sampling_statistics& statistics() const;
+  /// writes to `out` the samples (`Poisson_remesh::Poisson_sample<TriangleMesh, Point_3>`: face
+  /// location, point, kind) of the surface `tm` read through `vpm`.
+  /// - `features`: the input's corners and feature curves (`detect_features()` at the sampling
+  ///   scale; the remesher keeps exactly these as output features);
+  /// - `radius`: the disk radius r (samples about 2r apart); with adaptive density the median of
+  ///   `vertex_radii`;
+  /// - `vertex_radii`: empty for a uniform density; else the disk radius at each vertex, indexed by
+  ///   `CGAL::get_initialized_vertex_index_map(tm)` (linear inside faces, Eq. 3);
+  /// - `seed`: all random draws come from it (each remake passes another).
+  /// Returns what it did; the remesher reads `number_of_samples` (it counts them itself too).
+  template <class TriangleMesh, class VertexPointMap, class OutputIterator>
+  Poisson_remesh::Poisson_disk_sampling_result
+  operator()(const TriangleMesh& tm, VertexPointMap vpm, const Poisson_remesh::Feature_set<TriangleMesh>& features,
+             double radius, const std::vector<double>& vertex_radii, unsigned int seed, OutputIterator out) const;
 };

@@ -52,6 +52,37 @@ constexpr double feature_length_in_radii_ratio = 4.0;
 /// A vertex is a tip (step 6) when the angle defect summed within the scale exceeds this (radians).
 constexpr double tip_angle_defect = 0.5 * CGAL_PI;
 
+namespace internal {
+
+// An edge index for any FaceGraph, from the halfedge index map (in [0, num_halfedges)).
+// CGAL 5.5's initialized edge index map of a Polyhedron_3 reads ids that plain Polyhedron_3
+// items do not have, while its halfedge index map is initialized for every FaceGraph.
+template <class TriangleMesh>
+struct Edge_index_through_halfedge
+{
+  typedef typename boost::graph_traits<TriangleMesh>::edge_descriptor key_type;
+  typedef std::size_t value_type;
+  typedef std::size_t reference;
+  typedef boost::readable_property_map_tag category;
+
+  Edge_index_through_halfedge() = default;
+  explicit Edge_index_through_halfedge(const TriangleMesh& tm) : tm_(&tm), him_(CGAL::get_initialized_halfedge_index_map(tm)) {}
+
+  // (the smaller of its two halfedges' indices: an edge descriptor may hold either halfedge, as
+  // Surface_mesh's edge(h) does)
+  friend std::size_t get(const Edge_index_through_halfedge& m, key_type e)
+  {
+    const auto h = halfedge(e, *m.tm_);
+    return std::size_t((std::min)(get(m.him_, h), get(m.him_, opposite(h, *m.tm_))));
+  }
+
+private:
+  const TriangleMesh* tm_ = nullptr;
+  typename CGAL::GetInitializedHalfedgeIndexMap<TriangleMesh>::const_type him_;
+};
+
+} // namespace internal
+
 /// The features of a mesh, as detect_features() finds them: the feature edges, the corners and
 /// the feature curves between them (borders included).
 template <class TriangleMesh>
@@ -89,8 +120,9 @@ struct Feature_set
   bool is_corner(vertex_descriptor v) const { return corner[get(vim, v)]; }
 
   // indexing
-  /// the mesh's edge index map (`feature_edge` is indexed by it)
-  typename CGAL::GetInitializedEdgeIndexMap<TriangleMesh>::const_type eim;
+  /// the mesh's edge index map (`feature_edge` is indexed by it: the index of the edge's
+  /// halfedge, below `num_halfedges(tm)`, which works on every FaceGraph)
+  internal::Edge_index_through_halfedge<TriangleMesh> eim;
   /// the mesh's vertex index map (`corner` is indexed by it)
   typename CGAL::GetInitializedVertexIndexMap<TriangleMesh>::const_type vim;
   std::vector<bool> feature_edge;   ///< per edge index: a feature edge
@@ -201,15 +233,15 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
   const double min_length = choose_parameter(get_parameter(np, internal_np::minimum_feature_length), 0.0);
 
   Features fs;
-  fs.eim = CGAL::get_initialized_edge_index_map(tm);
+  fs.eim = internal::Edge_index_through_halfedge<TriangleMesh>(tm);
   fs.vim = CGAL::get_initialized_vertex_index_map(tm);
-  fs.feature_edge.assign(num_edges(tm), false);
+  fs.feature_edge.assign(num_halfedges(tm), false);
   fs.corner.assign(num_vertices(tm), false);
   auto eidx = [&](edge_descriptor e) { return std::size_t(get(fs.eim, e)); };
   auto vidx = [&](vertex_descriptor v) { return std::size_t(get(fs.vim, v)); };
 
   // 1. strong edges
-  std::vector<bool> border_edge(num_edges(tm), false);
+  std::vector<bool> border_edge(num_halfedges(tm), false);
   for(edge_descriptor e : edges(tm)) border_edge[eidx(e)] = is_border(e, tm);
   if(policy == Feature_policy::detect) {
     auto sharp = get(CGAL::dynamic_edge_property_t<bool>(), tm);
@@ -236,7 +268,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
     auto stamp = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
     for(face_descriptor f : faces(tm)) put(stamp, f, std::size_t(0));
     std::size_t visit = 0;
-    std::vector<bool> keep(num_edges(tm), true);
+    std::vector<bool> keep(num_halfedges(tm), true);
     const double cos_half = std::cos(0.5 * sharp_angle * CGAL_PI / 180.0);
     for(edge_descriptor e : edges(tm)) {
       if(!fs.feature_edge[eidx(e)] || border_edge[eidx(e)]) continue;
@@ -346,7 +378,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
   // 2b. closed loops of degree-2 vertices shorter than min_length
   auto remove_short_loops = [&] {
     if(!(min_length > 0)) return;
-    std::vector<bool> seen(num_edges(tm), false);
+    std::vector<bool> seen(num_halfedges(tm), false);
     for(edge_descriptor e : edges(tm)) {
       if(!fs.feature_edge[eidx(e)] || border_edge[eidx(e)] || seen[eidx(e)]) continue;
       std::vector<halfedge_descriptor> chain;
@@ -427,7 +459,7 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
   // 5. curves: from every corner along each feature edge, then the remaining closed loops
   auto trace_curves = [&] {
     fs.curves.clear();
-    std::vector<bool> used(num_edges(tm), false);
+    std::vector<bool> used(num_halfedges(tm), false);
     auto trace = [&](halfedge_descriptor start) {
       typename Features::Curve c;
       halfedge_descriptor h = start;

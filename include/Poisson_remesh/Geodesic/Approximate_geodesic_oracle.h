@@ -3,11 +3,12 @@
 // Approximate_geodesic_oracle
 // ===========================
 //
-// A cheap model of the concept `GeodesicOracle`
-// (see doc/Poisson_remesh/Concepts/GeodesicOracle.h), usable by the sampler
-// of "Direct Sampling on Surfaces for High Quality Remeshing" in place of the
-// exact window propagation of Section 4.2.2 (the paper's conclusion suggests
-// approximating the geodesic isolines to save time).
+// A cheap geodesic distance oracle with the queries of the concept `GeodesicOracle`
+// (see doc/Poisson_remesh/Concepts/GeodesicOracle.h): distances and iso-lines
+// in place of the exact window propagation of Section 4.2.2 (the paper's
+// conclusion suggests approximating the geodesic isolines to save time). Its
+// iso-curves are straight segments, which the sampler's circular available
+// boundary does not take: it does not drive the sampler.
 //
 // Method: truncated Dijkstra on the vertices, where the relaxation of a face
 // (A, B, C) uses the one-face unfolding update of fast marching methods

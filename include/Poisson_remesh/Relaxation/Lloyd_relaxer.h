@@ -316,6 +316,29 @@ public:
     return relax(mesh, is_feature, is_corner, s, No_new_vertex());
   }
 
+  /// The default model's rounds and switches, used by the concept's relax() below (the other
+  /// overloads take them as an argument).
+  Relaxation_settings settings;
+
+  /// The `Relaxer` concept's call (doc/Poisson_remesh/Concepts/Relaxer.h): relaxes `mesh` on the
+  /// input given at construction (`input` must be it; `input_vpm` its points as the relaxer was
+  /// built on them), with the property maps `is_feature` (edge -> bool), `is_fixed` (vertex ->
+  /// bool) and `density` (vertex -> double > 0, Eq. 6 weights), `iterations` Lloyd rounds and
+  /// `settings` for the rest; `new_vertex(v, on_feature)` is told each vertex it adds.
+  template <class InputMeshArg, class InputVPM, class Mesh, class IsFeatureMap, class IsFixedMap, class DensityMap, class NewVertex>
+  Relaxation_statistics relax(const InputMeshArg& input, InputVPM input_vpm, Mesh& mesh, IsFeatureMap is_feature, IsFixedMap is_fixed,
+                              DensityMap density, unsigned int iterations, NewVertex new_vertex) const
+  {
+    CGAL_precondition(static_cast<const void*>(&input) == static_cast<const void*>(&input_));
+    Relaxation_settings s = settings;
+    s.iterations = iterations;
+    typedef typename boost::graph_traits<Mesh>::edge_descriptor edge_descriptor;
+    typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+    return relax(mesh, [is_feature](edge_descriptor e) { return bool(get(is_feature, e)); },
+                 [is_fixed](vertex_descriptor v) { return bool(get(is_fixed, v)); }, s, new_vertex,
+                 [density](vertex_descriptor v) { return double(get(density, v)); });
+  }
+
   /// `progress(stage, done, total)` is told how far relax() is: "relaxation" for the Lloyd rounds
   /// (done of `iterations`), "optimization" for the passes after them (done of their number).
   /// It may throw to stop the relaxation (the mesh is then valid but not finished).

@@ -108,7 +108,8 @@ private:
 /// `Exact_geodesic_oracle` (the default, and the only model that fits today).
 template <class TriangleMesh,
           class VertexPointMap = typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type,
-          class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VertexPointMap>>
+          class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VertexPointMap>,
+          class BoundaryCurve = Circular_available_boundary<TriangleMesh, typename GeodesicOracle::Iso_arc>>
 class Boundary_sampler
 {
   typedef boost::graph_traits<TriangleMesh> GT;
@@ -124,15 +125,21 @@ public:
   typedef Poisson_sample<TriangleMesh, Point_3> Sample;
   /// the oracle's arc type
   typedef typename GeodesicOracle::Iso_arc Arc;
-  /// the available boundary
-  typedef Circular_available_boundary<TriangleMesh, Arc> Boundary;
+  /// the available boundary (a model of `BoundaryCurve`)
+  typedef BoundaryCurve Boundary;
 
   /// Closer than 2r * (1 - separation_tolerance) counts as inside a disk.
   static constexpr double separation_tolerance = 1e-9;
 
   /// A sampler of `tm` (read through `vpm`, which must outlive the sampler), its draws from `seed`.
   Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed)
-    : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), oracle_(tm, vpm), classifier_(tm, vpm),
+    : Boundary_sampler(tm, vpm, seed, GeodesicOracle(tm, vpm))
+  {}
+
+  /// As above, with the geodesic oracle `oracle` (a model of `GeodesicOracle` built on `tm`, read
+  /// through `vpm`; the sampler keeps a copy and propagates with it).
+  Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed, GeodesicOracle oracle)
+    : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), oracle_(std::move(oracle)), classifier_(oracle_),
       boundary_(tm), rng_(seed)
   {}
 

@@ -1,4 +1,4 @@
-// Poisson_remesh/Peers/isotropic_remeshing_peer.h
+// isotropic_remeshing_peer.h -- the benchmark contender: CGAL's isotropic_remeshing at a target vertex count (not part of the library: used by the programs and the benchmark)
 //
 // The peer every benchmark row is set beside: CGAL's
 // Polygon_mesh_processing::isotropic_remeshing(), driven to a target vertex count the way a
