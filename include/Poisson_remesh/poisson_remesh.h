@@ -147,7 +147,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   // one feature set for the sampler and the tessellation
   Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
-  // is finer there already: Max Planck's adaptive remesh lost 5.5 degrees of theta_min with both)
+  // is finer there already, and both together over-refine them)
   std::vector<double> radii =
       vertex_radii.empty() && choose_parameter(get_parameter(np, internal_np::feature_grading), true)
         ? internal::feature_graded_radii(input, in_vpm, features, radius, result.number_of_graded_tips)

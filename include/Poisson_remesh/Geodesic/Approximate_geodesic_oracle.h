@@ -20,9 +20,9 @@
 // source, which is a lower bound of the geodesic distance.
 //
 // Accuracy: exact on planar regions (up to the propagation order of the
-// Dijkstra front) and first-order elsewhere.  On the CGAL data meshes used in
-// the tests (elephant, fandisk) the error with respect to the exact distance
-// is below 5% of the distance plus one mean edge length; values are never
+// Dijkstra front) and first-order elsewhere.  The tests bound the error with
+// respect to the exact distance by 5% of the distance plus one mean edge
+// length on CGAL data meshes; values are never
 // below the Euclidean distance.  Iso-curves are the level sets of the linear
 // interpolation of the vertex distances: straight segments (`is_segment`).
 //

@@ -443,8 +443,8 @@ public:
 /// Snaps a barycentric triple: negative or tiny values are set to zero and the
 /// triple is renormalised.  Returns the number of non-zero coordinates.
 /// The threshold, 1e-12, moves a point by at most 1e-12 x (edge length); a source a
-/// few 1e-15 off a vertex, not snapped, produced degenerate windows that lost
-/// whole regions (seen on fandisk with a feature sample at a crease vertex).
+/// few 1e-15 off a vertex, not snapped, produces degenerate windows that lose
+/// whole regions (a feature sample at a crease vertex).
 inline int snap_barycentric(std::array<double, 3>& b)
 {
   for(double& x : b)

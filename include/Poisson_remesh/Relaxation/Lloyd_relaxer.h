@@ -30,7 +30,7 @@
 // fidelity tolerance at most), and the crossings left from the tessellation and the Lloyd passes
 // get vertex moves, flips and collapses that leave fewer of them (untangling). Moves and insertions that
 // make the mesh cut itself anew are taken back (not for a crossing near the input's own: an
-// input that cuts itself, cow's tail through its body).
+// input that cuts itself, as where one part runs through another).
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
@@ -68,8 +68,7 @@ namespace Poisson_remesh {
 struct Relaxation_settings
 {
   /// rounds of Lloyd + Delaunay flips + valence flips. The paper finds about 3 enough for the
-  /// points; the connectivity keeps improving to about 10 (irregular vertices 35% -> 23% on
-  /// fandisk, elephant and knot1), at a cost small beside the sampling.
+  /// points; the connectivity keeps improving to about 10, at a cost small beside the sampling.
   unsigned int iterations = 10;
   bool delaunay_flips = true;              ///< Delaunay flips after each Lloyd pass
   bool valence_flips = true;               ///< valence flips (§6.3, Eq. 7-8) after each Lloyd pass
@@ -85,8 +84,8 @@ struct Relaxation_settings
   /// samples that no vertex move can mend
   bool collapse_slivers = true;
   double sliver_angle = 30;   ///< a triangle with a smaller angle is a sliver (collapses, refinement)
-  /// (0.5; it was 0.45, which left triceratops' triangle of three corners on a toe, two of them
-  /// 0.6 spacings apart and the third 1.3 away -- a ratio of 0.452 -- at 26.7 degrees)
+  /// a sliver's shortest edge must be under this share of its longest to be collapsed (a triangle
+  /// of three corners closer than the spacing has about half)
   double sliver_edge_ratio = 0.5;
   unsigned int rounds_after_collapse = 3;   ///< relaxation rounds after the sliver collapses
   /// (beyond the paper) an input vertex farther than this (times the input's bounding-box
@@ -144,18 +143,16 @@ struct Relaxation_settings
   /// over `regularity_min_angle`; each round is followed by a smoothing round; 0 disables. The
   /// rounds stop when a round flips nothing (two or three rounds on the benchmark models).
   unsigned int regularity_rounds = 4;
-  /// (29 degrees: a flip may leave a triangle a degree under the 30 degree floor, the angle
-  /// optimization and the refinement that follow lift it back; irregular vertices 0.5-0.9 points
-  /// fewer on the eight benchmark models than with 30, no smallest angle under 30 where there was
-  /// none, seeds 0-7; 28.5 leaves triceratops at 29.3 degrees at seed 2)
+  /// the smallest angle a regularity flip's triangles keep: a degree under the 30 degree floor,
+  /// which the angle optimization and the refinement that follow lift back
   double regularity_min_angle = 29;
   /// (beyond the paper) after the refinement, one more round of regularity flips (no look-ahead)
   /// whose new triangles keep this smallest angle, or the mesh's smallest angle if larger (up to
   /// optimized_angle); the round is taken back whole if it makes the mesh cut itself anew; 0
-  /// disables (cow at seed 3: 25.01 -> 24.73% irregular)
+  /// disables
   double final_regularity_min_angle = 30;
   /// (beyond the paper) rounds of untangling at the very end: the crossings left (the
-  /// tessellation and the Lloyd passes do not check for them; femur's bumps) lose a free vertex
+  /// tessellation and the Lloyd passes do not check for them: bumps finer than the spacing) lose a free vertex
   /// of a crossing face moved onto the input below its neighbours' centroid (or halfway there), or
   /// an edge of a crossing face flipped, when fewer crossing pairs involve the faces it changes and
   /// their smallest angle stays over `untangle_min_angle` (or what it was); 0 disables
@@ -169,9 +166,7 @@ struct Relaxation_settings
   /// (beyond the paper) a Lloyd move that would make one of the vertex's triangles sharper than
   /// this (degrees) and sharper than they are goes half the way; if that still does, it is
   /// refused: on thin parts and near graded tips a centroid projected back onto the input can
-  /// line a vertex up with two neighbours, and the later rounds do not undo that (dino: 6-8
-  /// degrees at 3 of 8 seeds, 33 or more with it; refusing without the half step left Max
-  /// Planck's adaptive remesh at 12.4 degrees); 0 disables
+  /// line a vertex up with two neighbours, and the later rounds do not undo that; 0 disables
   double lloyd_min_angle = 25;
   /// a regularity flip that leaves as many irregular vertices (it moves one: a 5-7 pair glides) is
   /// made when a flip of an edge at one of its four vertices then makes fewer; both flips under
@@ -877,7 +872,7 @@ private:
   }
 
   // whether the centroid of face f of m lies within two of f's longest edge's lengths of the
-  // centroid of a face of the input that cuts the input (cow's tail runs through its body): the
+  // centroid of a face of the input that cuts the input (one part of it runs through another): the
   // mesh follows the input there, and a crossing of it is the input's own (the quality report
   // leaves out such crossings too, by its own measure: two mean edge lengths of tm to the face)
   template <class Mesh>
@@ -1159,7 +1154,7 @@ private:
     auto length = [&](vertex_descriptor a, vertex_descriptor b) { return std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, a), get(vpm, b)))); };
     std::vector<std::pair<vertex_descriptor, vertex_descriptor>> long_edges;
     for(auto e : edges(m)) {
-      if(!is_feature(e) && !is_border(e, m)) continue;   // (splitting long free edges too was tried: no better angles, worse Hausdorff on fandisk)
+      if(!is_feature(e) && !is_border(e, m)) continue;   // (free edges: the Lloyd rounds even them out)
       const vertex_descriptor a = source(halfedge(e, m), m), b = target(halfedge(e, m), m);
       double sum = 0;
       std::size_t n = 0;
@@ -1273,7 +1268,7 @@ private:
           const Point_3& third = get(vpm, target(next(opposite(next(link, m), m), m), m));
           if(closed) continue;
           // (and the removed vertex is close to the new triangle, within half the fidelity tolerance:
-          // a tip is not cut off; a quarter kept cow at seed 5 at 29.9 degrees beside a horn tip)
+          // a tip is not cut off)
           const double tol = (s.max_deviation > 0 ? 0.5 * s.max_deviation : 0.002) * diagonal_;
           if(cos_between(normal(P, Q, third), n) > 0.5 &&
              CGAL::to_double(CGAL::squared_distance(get(vpm, x), typename GeomTraits::Triangle_3(P, Q, third))) <= tol * tol) {
@@ -1571,8 +1566,7 @@ private:
       try_split(p, order, 0.26);
     }
     // the edges far from the input (those still in the mesh), each triangle split once at most,
-    // turning a triangle by 60 degrees at most (the limit of folds(); 75 lowers the smallest
-    // angle, elephant 35.0 -> 34.5 degrees at seed 0)
+    // turning a triangle by 60 degrees at most (the limit of folds())
     std::sort(far_edges.begin(), far_edges.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
     std::set<vertex_descriptor> split_near;
     std::size_t edge_splits = 0;
@@ -1711,7 +1705,7 @@ private:
       }
     }
     // (with `collapses`) a free vertex shared by two faces still crossing -- its fan folded over on
-    // a part thinner than the triangles, dino's claw -- goes into a free neighbour, which keeps
+    // a part thinner than the triangles, a claw -- goes into a free neighbour, which keeps
     // its place, when the triangles around it cross fewer others and keep untangle_collapse_min_angle;
     // tried on a copy of the mesh; the caller optimizes the angles there again
     if(collapses != nullptr) {

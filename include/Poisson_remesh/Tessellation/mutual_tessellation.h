@@ -73,7 +73,7 @@ struct Mutual_tessellation_settings
   double gamma = 30;
   /// a removal is refused when a new triangle's normal is more than this away from the mean
   /// normal of the removed vertex's star (of its side, on a feature curve): no fold-overs.
-  /// 60 degrees: measured on triceratops and elephant (75 leaves fewer vertices but more folds).
+  /// (a larger bound leaves fewer input vertices but more folds)
   double max_removal_normal_deviation = 60;
   /// when a pass removes nothing, the bound above is raised to this one for the vertices left
   /// (mostly tips of thin parts, where a kept original vertex causes more self-intersections than

@@ -7,19 +7,14 @@
 // A tip kept as a vertex with k neighbours at distance d has apex angles of at most c(d) / k, c(d)
 // the cone angle within d (360 degrees minus the angle defects there), and three neighbours fit
 // around it only where the geodesic circle of radius d, of length L(d) = integral of c(t) dt from 0
-// to d (c d on a cone, the girth on a tube), holds three disks. At the spacing s = 2r, triceratops's
-// horn tip has L(s) = 2.0 s (a flat surface: 2 pi s) and its tip triangles had 16-24 degrees.
+// to d (c d on a cone, the girth on a tube), holds three disks (a flat surface has L(s) = 2 pi s at
+// the spacing s = 2r; a horn tip can have a third of that).
 // A needle -- a tip whose own cone angle (its vertex's angle sum) is under 90 degrees, so that no
 // sampling makes its apex angles 30 -- is left alone. Where L(s) < 2 `ring_samples` r, the disk radius within `tip_reach` spacings of the tip becomes L(d) / (2
 // `ring_samples`) (at least `smallest_ratio` of the radius there) -- `ring_samples` = 4 rather
 // than 3, because a maximal disk set on a circle of length 6r may hold only two -- and then grows
 // by at most `grading` per unit of length along the edges, up to the given radius.
-//
-// Measured (remesh_benchmark, seeds 1-3, at the input's vertex count): theta_min on triceratops
-// 23.0/16.2/15.5 -> 32.8/32.9/32.9 degrees, dino 27.8/11.7/31.2 -> 32.8/31.3/30.6, cow
-// 25.7/6.0/22.1 -> 27.8/27.8/27.7. Tried and not kept: also grading between corners closer than
-// the spacing (disk radius half their distance): better on some seeds, worse on others (femur,
-// dino at seed 3); L(d) / 6 (three disks: often two fit, the tip's star folds) and L(d) / 10.
+
 
 #ifndef POISSON_REMESH_INTERNAL_FEATURE_GRADING_H
 #define POISSON_REMESH_INTERNAL_FEATURE_GRADING_H

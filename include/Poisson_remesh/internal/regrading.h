@@ -5,12 +5,11 @@
 // places at fault, graded back to the spacing: a posteriori grading, used by poisson_remesh()
 // (`regrading_attempts`, default 6). A remesh that is fine the first time is not touched.
 //
-// Why: an input crumpled below the spacing -- CGAL's femur, stacked from slices, whose seams are
-// pleats folded back over the surface (3,700 of its 11,700 edges sharper than 60 degrees) -- has
-// places where no placement of the samples on the input at the spacing avoids folded triangles:
-// on femur at seed 3 the tessellation's result has 26 crossing pairs before any relaxation, and
-// no move of one of their vertices to any input point within its star's mean edge length leaves
-// fewer. Where the samples are finer than the pleats, the triangles follow them.
+// Why: an input crumpled below the spacing -- a surface stacked from slices, whose seams are pleats
+// folded back over it -- has places where no placement of the samples on the input at the
+// spacing avoids folded triangles: the tessellation's result already crosses itself there, and no
+// move of a vertex to an input point within its star's edge length undoes it. Where the samples
+// are finer than the pleats, the triangles follow them.
 //
 // When: the output has face pairs that cut each other away from the input's own crossings (both
 // centroids within two mean edge lengths of the output of an input triangle that cuts another, as
@@ -28,16 +27,7 @@
 // pointed tips) and the input vertices the tessellation could not remove are free to move.
 // The best attempt is kept: fewest crossings, then the largest smallest angle (up to the floor),
 // then the fewest triangles under `min_angle` at no pointed tip.
-//
-// Measured on femur at seeds 0-7 (poisson_remesh program at the input's vertex count): before,
-// 9-17 crossing pairs and theta_min 10.1-16.7 degrees at every seed; with it, no crossing pair and
-// theta_min 30.0-32.3 at every seed, after 1-6 more attempts (4,144-4,472 vertices instead of
-// 3,820-3,900; 2.8-10 s instead of 1.1-1.6 s). The 7 other models of the benchmark are not
-// remeshed again at any seed: their outputs are unchanged.
-// Tried and not kept: grading around the input's overhangs (faces turned against their
-// neighbourhood) before sampling: 6 of 8 seeds without crossings but theta_min 23-27 and 25-26%
-// irregular vertices; regrading around sharp triangles at fixed vertices too: more vertices
-// (6,000+) and 5 of 8 seeds.
+
 
 #ifndef POISSON_REMESH_INTERNAL_REGRADING_H
 #define POISSON_REMESH_INTERNAL_REGRADING_H
