@@ -15,20 +15,18 @@
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/Tessellation/mutual_tessellation.h>
 #include <Poisson_remesh/internal/feature_grading.h>
+#include <Poisson_remesh/internal/repair_degenerate_faces.h>
 #include <Poisson_remesh/internal/regrading.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
 #include <Poisson_remesh/progress.h>
 
+#include <Poisson_remesh/internal/feature_curves.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Kernel_traits.h>
 #include <boost/property_map/function_property_map.hpp>
-#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
-#include <CGAL/Polygon_mesh_processing/manifoldness.h>
-#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
@@ -85,38 +83,27 @@ struct Poisson_remesh_result
 
 namespace internal {
 
-// The closest point of the input's feature curves (of its surface when it has none): what tells
-// an output edge between feature samples or corners that follows a curve from one that cuts across.
+// The closest point of the input's feature curves, or of its surface when it has none, as
+// Lloyd_relaxer::project_on_features() gives it: the remesher's own when a user's relaxer runs.
 template <class TriangleMesh, class K>
 class Feature_projector
 {
   typedef typename K::Point_3 Point_3;
-  typedef typename K::Segment_3 Segment_3;
-  typedef typename std::vector<Segment_3>::const_iterator Iterator;
-  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, Iterator>>> Segment_tree;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<TriangleMesh>>> Face_tree;
 
 public:
   // (`tm` read through its own point map)
-  Feature_projector(const TriangleMesh& tm, const Feature_set<TriangleMesh>& features)
+  Feature_projector(const TriangleMesh& tm, const Feature_set<TriangleMesh>& features) : curves_(tm, features)
   {
-    const auto vpm = get(CGAL::vertex_point, tm);
-    for(auto e : edges(tm))
-      if(features.is_feature(e)) segments_.emplace_back(get(vpm, source(halfedge(e, tm), tm)), get(vpm, target(halfedge(e, tm), tm)));
-    if(!segments_.empty()) {
-      segment_tree_.insert(segments_.begin(), segments_.end());
-      segment_tree_.accelerate_distance_queries();
-    } else {
-      face_tree_.insert(faces(tm).first, faces(tm).second, tm);
-      face_tree_.accelerate_distance_queries();
-    }
+    if(!curves_.empty()) return;
+    faces_.insert(faces(tm).first, faces(tm).second, tm);
+    faces_.accelerate_distance_queries();
   }
-  Point_3 project(const Point_3& p) const { return segments_.empty() ? face_tree_.closest_point(p) : segment_tree_.closest_point(p); }
+  Point_3 project(const Point_3& p) const { return curves_.empty() ? faces_.closest_point(p) : curves_.closest_point(p); }
 
 private:
-  std::vector<Segment_3> segments_;
-  Segment_tree segment_tree_;
-  Face_tree face_tree_;
+  Feature_curves<K> curves_;
+  Face_tree faces_;
 };
 
 // poisson_remesh() on an input without zero-area faces; `input` is read through the
@@ -223,7 +210,14 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     for(const auto& v : tessellation.vertices)
       if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
     auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
-    const internal::Feature_projector<TriangleMesh, K> features_of_input(input, features);
+    // the default relaxer, or the projection onto the input's features it would give (a user's
+    // relaxer): one of them is built
+    constexpr bool default_relaxer = parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
+    std::optional<Lloyd_relaxer<TriangleMesh, K>> relaxer;
+    std::optional<internal::Feature_projector<TriangleMesh, K>> projector;
+    if constexpr(default_relaxer) relaxer.emplace(input, features);
+    else projector.emplace(input, features);
+    auto project_on_features = [&](const Point_3& p) { return relaxer ? relaxer->project_on_features(p) : projector->project(p); };
     progress.set_span(0.4, 1.0);
     auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
     // an output feature edge joins two feature (or corner) samples along an input feature curve
@@ -233,7 +227,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
       if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
       const Point_3 mid = CGAL::midpoint(point(a), point(b));
-      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, features_of_input.project(mid)));
+      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, project_on_features(mid)));
       if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
       // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
       // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
@@ -288,18 +282,17 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       put(density_map, v, mean);
       return mean;
     };
-    if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value) {
-      Lloyd_relaxer<TriangleMesh, K> relaxer(input, features);
+    if constexpr(default_relaxer) {
       if(progress.active())
-        relaxer.set_progress([&](const char* stage, std::size_t done, std::size_t total) {
+        relaxer->set_progress([&](const char* stage, std::size_t done, std::size_t total) {
           // (the Lloyd rounds take about half of the relaxation, the passes after them the rest)
           const bool lloyd = stage[0] == 'r';
           progress.set_span(lloyd ? 0.4 : 0.7, lloyd ? 0.7 : 1.0);
           progress(stage, done, total);
         });
       // (a uniform density: the relaxer's unit weights; adaptive or graded: the density above)
-      if(radii.empty()) result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex);
-      else result.relaxation = relaxer.relax(output, is_feature, is_fixed, settings, new_vertex, density);
+      if(radii.empty()) result.relaxation = relaxer->relax(output, is_feature, is_fixed, settings, new_vertex);
+      else result.relaxation = relaxer->relax(output, is_feature, is_fixed, settings, new_vertex, density);
     } else {   // the user's model of the Relaxer concept: the maps and the density
       result.relaxation = internal::unwrap(get_parameter(np, internal_np::relaxer)).relax(
         input, in_vpm, output, boost::make_function_property_map<edge_descriptor, bool>(is_feature),
@@ -380,16 +373,13 @@ template <class InputMesh, class OutputMesh, class NamedParameters = parameters:
 Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
                                      const NamedParameters& np = parameters::default_values())
 {
-  namespace PMP = CGAL::Polygon_mesh_processing;
   using parameters::choose_parameter;
   using parameters::get_parameter;
   auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
   if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
   // zero-area faces have no sampling, tessellation or angle to speak of: a remesher exists to
   // replace them, so they are removed first (on a copy: the input is the caller's)
-  std::size_t degenerate = 0;
-  for(auto f : faces(input))
-    if(PMP::is_degenerate_triangle_face(f, input, CGAL::parameters::vertex_point_map(in_vpm))) ++degenerate;
+  const std::size_t degenerate = internal::count_degenerate_faces(input, in_vpm);
   if(degenerate > 0 && choose_parameter(get_parameter(np, internal_np::strict_input), false))
     throw std::invalid_argument("poisson_remesh: the input has " + std::to_string(degenerate) +
                                 " zero-area faces (strict_input: not repaired)");
@@ -410,14 +400,11 @@ Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
     CGAL::copy_face_graph(input, work, CGAL::parameters::vertex_point_map(in_vpm));
     std::size_t split = 0;
     if(degenerate > 0) {
-      PMP::remove_degenerate_faces(work);
-      split = PMP::duplicate_non_manifold_vertices(work);
-      std::size_t left = 0;
-      for(auto f : faces(work))
-        if(PMP::is_degenerate_triangle_face(f, work)) ++left;
-      if(left > 0 || faces(work).empty() || !CGAL::is_valid_polygon_mesh(work))
+      const internal::Degenerate_face_repair repaired = internal::remove_degenerate_faces(work, get(CGAL::vertex_point, work));
+      if(!repaired.complete)
         throw std::invalid_argument("poisson_remesh: the input's " + std::to_string(degenerate) +
                                     " zero-area faces could not all be removed");
+      split = repaired.split_vertices;
       internal::collect_garbage(work);
     }
     Poisson_remesh_result result =

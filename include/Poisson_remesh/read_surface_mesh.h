@@ -10,6 +10,7 @@
 #ifndef POISSON_REMESH_READ_SURFACE_MESH_H
 #define POISSON_REMESH_READ_SURFACE_MESH_H
 
+#include <Poisson_remesh/internal/repair_degenerate_faces.h>
 #include <Poisson_remesh/parameters.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
@@ -246,7 +247,6 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   using parameters::get_parameter;
   typedef typename CGAL::GetVertexPointMap<TriangleMesh, NamedParameters>::type VPM;
   typedef typename boost::property_traits<VPM>::value_type Point;
-  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
 
   const bool strict = choose_parameter(get_parameter(np, internal_np::strict_input), false);
   const bool repair = choose_parameter(get_parameter(np, internal_np::repair_degenerate_faces), !strict);
@@ -418,13 +418,8 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   }
 
   // 6. degenerate faces
-  std::size_t degenerate = 0, first_degenerate = 0, index = 0;
-  for(face_descriptor f : faces(tm)) {
-    if(PMP::is_degenerate_triangle_face(f, tm, CGAL::parameters::vertex_point_map(vpm))) {
-      if(degenerate++ == 0) first_degenerate = index;
-    }
-    ++index;
-  }
+  std::size_t first_degenerate = 0;
+  const std::size_t degenerate = internal::count_degenerate_faces(tm, vpm, &first_degenerate);
   if(degenerate) {
     if(!repair) {
       clear(tm);
@@ -433,23 +428,17 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
                         std::to_string(first_degenerate) + (report.triangulated_polygons ? " after triangulation" : "") +
                         "; they are removed unless strict input is asked for");
     }
-    PMP::remove_degenerate_faces(tm, CGAL::parameters::vertex_point_map(vpm));
-    std::size_t left = 0;
-    for(face_descriptor f : faces(tm))
-      if(PMP::is_degenerate_triangle_face(f, tm, CGAL::parameters::vertex_point_map(vpm))) ++left;
-    if(left || is_empty(tm) || !is_valid_polygon_mesh(tm)) {
+    const internal::Degenerate_face_repair repaired = internal::remove_degenerate_faces(tm, vpm);
+    if(!repaired.complete) {
       clear(tm);
       throw Input_error(Input_error_code::degenerate_faces,
                         quoted + ": " + std::to_string(degenerate) + " degenerate faces could not all be removed");
     }
     report.removed_degenerate_faces = degenerate;
     report.warnings.push_back(std::to_string(degenerate) + " degenerate faces were removed");
-    // a removed face can leave a vertex where two fans touch (found by fuzzing): it is split
-    // into one vertex per fan, which keeps every face and makes the surface a manifold again
-    const std::size_t pinched = PMP::duplicate_non_manifold_vertices(tm, CGAL::parameters::vertex_point_map(vpm));
-    if(pinched) {
-      report.split_pinched_vertices = pinched;
-      report.warnings.push_back(std::to_string(pinched) + " vertices where the removed faces left two fans touching were split");
+    if(repaired.split_vertices) {
+      report.split_pinched_vertices = repaired.split_vertices;
+      report.warnings.push_back(std::to_string(repaired.split_vertices) + " vertices where the removed faces left two fans touching were split");
     }
   }
   return report;

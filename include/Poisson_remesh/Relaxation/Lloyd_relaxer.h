@@ -36,9 +36,9 @@
 #define POISSON_REMESH_RELAXATION_LLOYD_RELAXER_H
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/internal/feature_curves.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/box_intersection_d.h>
@@ -279,20 +279,12 @@ class Lloyd_relaxer
   typedef typename GeomTraits::Segment_3 Segment_3;
   typedef CGAL::AABB_face_graph_triangle_primitive<InputMesh> Face_primitive;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Face_primitive>> Face_tree;
-  typedef typename std::vector<Segment_3>::const_iterator Segment_iterator;
-  typedef CGAL::AABB_segment_primitive<GeomTraits, Segment_iterator> Segment_primitive;
-  typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Segment_primitive>> Segment_tree;
 
 public:
   /// `features`: the input's features (their edges are where feature vertices may slide).
   Lloyd_relaxer(const InputMesh& input, const Feature_set<InputMesh>& features)
-    : input_(input), faces_(faces(input).first, faces(input).second, input)
+    : input_(input), faces_(faces(input).first, faces(input).second, input), curves_(input, features)
   {
-    for(auto e : edges(input))
-      if(features.is_feature(e))
-        segments_.emplace_back(get(get(CGAL::vertex_point, input), source(halfedge(e, input), input)),
-                               get(get(CGAL::vertex_point, input), target(halfedge(e, input), input)));
-    if(!segments_.empty()) segment_tree_.insert(segments_.begin(), segments_.end());
     faces_.accelerate_distance_queries();
     const auto& pts = get(CGAL::vertex_point, input);
     if(!vertices(input).empty()) {
@@ -300,7 +292,6 @@ public:
       for(auto v : vertices(input)) box += get(pts, v).bbox();
       diagonal_ = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
     }
-    if(!segments_.empty()) segment_tree_.accelerate_distance_queries();
   }
 
   /// Relaxes `mesh` (its vertices on the input) in place. `is_feature(e)` tells the output's
@@ -505,7 +496,7 @@ public:
   /// the point of the input surface closest to `p`
   Point_3 project_on_surface(const Point_3& p) const { return faces_.closest_point(p); }
   /// the point of the input's feature edges closest to `p` (of the surface, without features)
-  Point_3 project_on_features(const Point_3& p) const { return segments_.empty() ? project_on_surface(p) : segment_tree_.closest_point(p); }
+  Point_3 project_on_features(const Point_3& p) const { return curves_.empty() ? project_on_surface(p) : curves_.closest_point(p); }
   /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
   /// project_on_features), near p: the search starts from it instead of a k-d tree query, which
   /// makes projections of moving vertices cheaper (the result is the same closest point).
@@ -513,7 +504,7 @@ public:
   Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return faces_.closest_point(p, hint); }
   Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
   {
-    return segments_.empty() ? project_on_surface(p, hint) : segment_tree_.closest_point(p, hint);
+    return curves_.empty() ? project_on_surface(p, hint) : curves_.closest_point(p, hint);
   }
   /// @}
 
@@ -1860,8 +1851,7 @@ private:
   // crossing of the mesh is met (see near_input_crossing)
   mutable bool input_crossings_known_ = false;
   mutable std::vector<Point_3> input_crossings_;
-  std::vector<Segment_3> segments_;
-  Segment_tree segment_tree_;
+  internal::Feature_curves<GeomTraits> curves_;
 };
 
 } // namespace Poisson_remesh
