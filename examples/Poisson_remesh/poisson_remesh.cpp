@@ -18,6 +18,7 @@
 #include "command_line.h"
 
 #include <Poisson_remesh/IO/write_density_map_svg.h>
+#include <Poisson_remesh/IO/write_mesh_svg.h>
 #include <Poisson_remesh/IO/write_quality_report.h>
 #include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/density_fields.h>
@@ -37,6 +38,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <functional>
 #include <cmath>
 #include <cstdio>
@@ -84,6 +86,8 @@ static const char* usage =
   "  --report FILE.json  write the before/after quality report as JSON\n"
   "  --svg FILE          write the before/after angle histograms as an SVG picture\n"
   "  --density-svg FILE  write the sampling density on the input (samples per unit area) as an SVG picture\n"
+  "  --picture FILE.svg  write the input and the output side by side (and the peer's with --compare-peer),\n"
+  "                      flat-shaded with their edges, triangles under 30 degrees in red\n"
   "  --full-report       the Hausdorff distance to within 1e-4 of the diagonal (CGAL's bounded-error\n"
   "                      algorithm; default: sampled at the vertices, edge midpoints and triangle\n"
   "                      centroids of both meshes, a lower bound shown with the most it can miss)\n"
@@ -107,7 +111,7 @@ namespace {
 
 struct Options
 {
-  std::string method = "poisson", report_file, svg_file, density_svg_file, output_dir, format = "off";
+  std::string method = "poisson", report_file, svg_file, density_svg_file, picture_file, output_dir, format = "off";
   std::string summary_csv, summary_json;
   cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60, fidelity = 0.008;
@@ -239,6 +243,7 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
                            .sampled_hausdorff(!o.full_report)
                            .hausdorff_relative_error_bound(1e-4);
   PR::Labelled_quality_reports reports = {{"input", PR::quality_report(input, np)}};
+  std::optional<Mesh> peer;   // the peer's remesh, with --compare-peer (for --picture)
   try {
     if(o.method == "poisson") {
       say << "Poisson-disk remeshing of " << in << " (" << num_vertices(input) << " vertices) to about "
@@ -299,9 +304,9 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
             << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
       reports.push_back({"output (Poisson)", PR::quality_report(output, input, np)});
       if(o.compare_peer) {
-        Mesh peer;
-        run_peer(peer);
-        reports.push_back({"peer (CGAL isotropic)", PR::quality_report(peer, input, np)});
+        peer.emplace();
+        run_peer(*peer);
+        reports.push_back({"peer (CGAL isotropic)", PR::quality_report(*peer, input, np)});
       }
     } else {
       row.seconds_remesh = run_peer(output);
@@ -351,6 +356,14 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
     if(!o.svg_file.empty()) {
       PR::write_file_atomically(o.svg_file, [&](std::ostream& s) { PR::write_angle_histogram_svg(s, reports); });
       say << "wrote " << o.svg_file << "\n";
+    }
+    if(!o.picture_file.empty()) {
+      std::vector<std::pair<const Mesh*, std::string>> panels = {{&input, "input"}, {&output, reports[1].first}};
+      if(peer) panels.push_back({&*peer, reports.back().first});
+      PR::Mesh_svg_view view;
+      view.title = fs::path(in).filename().string();
+      PR::write_file_atomically(o.picture_file, [&](std::ostream& s) { PR::write_mesh_comparison_svg(s, panels, view); });
+      say << "wrote " << o.picture_file << "\n";
     }
   } catch(const PR::Output_error& e) {
     return fail(cli::output_error, e.what());
@@ -592,6 +605,7 @@ int main(int argc, char** argv)
       else if(a == "--fidelity-tolerance") o.fidelity = args.number(a);
       else if(a == "--report") o.report_file = args.value(a);
       else if(a == "--svg") o.svg_file = args.value(a);
+      else if(a == "--picture") o.picture_file = args.value(a);
       else if(a == "--repair") {}   // (the default now: kept so that older command lines still run)
       else if(a == "--strict") o.strict = true;
       else if(a == "--compare-peer") o.compare_peer = true;
@@ -625,8 +639,8 @@ int main(int argc, char** argv)
       throw cli::Usage_error("adaptive density is for --method poisson");
     if(!o.output_dir.empty() && !o.density.density_file.empty())
       throw cli::Usage_error("--density FILE gives one value per vertex of one mesh: not for a batch");
-    if(!o.output_dir.empty() && (!o.report_file.empty() || !o.svg_file.empty() || !o.density_svg_file.empty()))
-      throw cli::Usage_error("--report, --svg and --density-svg name one file: not for a batch (use --summary)");
+    if(!o.output_dir.empty() && (!o.report_file.empty() || !o.svg_file.empty() || !o.density_svg_file.empty() || !o.picture_file.empty()))
+      throw cli::Usage_error("--report, --svg, --density-svg and --picture name one file: not for a batch (use --summary)");
   } catch(const cli::Usage_error& e) {
     std::cerr << "poisson_remesh: " << e.what() << "\n";
     cli::print_usage(std::cerr, usage);

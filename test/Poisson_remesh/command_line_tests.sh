@@ -39,9 +39,14 @@ check "help lists --vertices" has out "--vertices N"
 echo precious > "$dir/keep.off"
 check "unknown method" run 2 "$poisson_remesh" --method magic "$data/meshes/fandisk.off" "$dir/keep.off"
 check "output untouched (method)" grep -q precious "$dir/keep.off"
-check "poisson remesh with the peer beside" run 0 "$poisson_remesh" --vertices 1200 --seed 2 --compare-peer "$data/meshes/elephant.off" "$dir/ours.off"
+check "poisson remesh with the peer beside" run 0 "$poisson_remesh" --vertices 1200 --seed 2 --compare-peer --picture "$dir/pic.svg" "$data/meshes/elephant.off" "$dir/ours.off"
 check "table has ours and the peer" sh -c "grep -q 'output (Poisson)' '$dir/out' && grep -q 'peer (CGAL isotropic)' '$dir/out'"
 check "poisson output written" sh -c "head -1 '$dir/ours.off' | grep -q OFF"
+check "picture: three panels" sh -c "grep -q '>input (' '$dir/pic.svg' && grep -q '>output (Poisson) (' '$dir/pic.svg' && grep -q '>peer (CGAL isotropic) (' '$dir/pic.svg'"
+# one path per face: the input's and ours (faces in the OFF headers) and the peer's (at least one)
+faces_of() { awk '!/^#/ && NF { n++; if(n == 2) { print $2; exit } }' "$1"; }
+check "picture: a path per face" sh -c "test \$(grep -c '<path ' '$dir/pic.svg') -gt \$(( $(faces_of "$data/meshes/elephant.off") + $(faces_of "$dir/ours.off") ))"
+check "picture refused in a batch" run 2 "$poisson_remesh" --picture "$dir/p.svg" -o "$dir/batch_pic" "$data/meshes/elephant.off"
 check "same seed, same output" sh -c "'$poisson_remesh' --vertices 1200 --seed 2 '$data/meshes/elephant.off' '$dir/ours2.off' >/dev/null && cmp -s '$dir/ours.off' '$dir/ours2.off'"
 # pointed tips sampled finer (feature grading), or not with --no-grading
 check "horn tips graded" run 0 "$poisson_remesh" --vertices 1500 --no-self-intersections "$data/meshes/triceratops.off" "$dir/graded.off"

@@ -3,6 +3,7 @@
 #include "analytic_meshes.h"
 #include "test_support.h"
 
+#include <Poisson_remesh/IO/write_mesh_svg.h>
 #include <Poisson_remesh/IO/write_quality_report.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/quality_report.h>
@@ -359,6 +360,74 @@ TEST_CASE("quality report JSON and SVG carry the figures", "[quality][io]")
   CHECK(svg.str().rfind("<svg", 0) == 0);
   CHECK(svg.str().find("</svg>") != std::string::npos);
   CHECK(svg.str().find("stroke=\"red\"") != std::string::npos);
+}
+
+TEST_CASE("mesh pictures: one path per face, back to front, the triangles under 30 degrees in red", "[io]")
+{
+  // a UV sphere: slivers at the poles, near-square quads elsewhere; and a plane of 45-degree triangles
+  const Mesh sphere = analytic::sphere(24, 12).to_mesh<Mesh>();
+  const Mesh plane = analytic::plane(4, 4).to_mesh<Mesh>();
+  std::size_t expected_marked = 0;   // judged with CGAL's angle, not the picture's code
+  for(auto f : faces(sphere)) {
+    const auto h = halfedge(f, sphere);
+    const K::Point_3 p = sphere.point(source(h, sphere)), q = sphere.point(target(h, sphere)),
+                     r = sphere.point(target(next(h, sphere), sphere));
+    const double smallest = std::min({CGAL::approximate_angle(q, p, r), CGAL::approximate_angle(p, q, r),
+                                      CGAL::approximate_angle(p, r, q)});
+    expected_marked += smallest < 30;
+  }
+  REQUIRE(expected_marked > 0);
+  std::ostringstream os;
+  PR::Mesh_svg_view view;
+  view.width = 400;
+  view.title = "a <sphere> & a plane";
+  PR::write_mesh_comparison_svg<Mesh>(os, {{&sphere, "sphere"}, {&plane, "plane"}}, view);
+  const std::string svg = os.str();
+  auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for(std::size_t at = svg.find(what); at != std::string::npos; at = svg.find(what, at + 1)) ++n;
+    return n;
+  };
+  CHECK(svg.rfind("<?xml", 0) == 0);
+  CHECK(svg.find("</svg>") != std::string::npos);
+  CHECK(svg.find("a &lt;sphere&gt; &amp; a plane") != std::string::npos);   // the title, escaped
+  CHECK(count("<path ") == num_faces(sphere) + num_faces(plane));
+  CHECK(count("class=\"marked\"") == expected_marked);   // the plane's 45-degree triangles are not red
+  // every vertex inside the picture: two panels of 400 pixels
+  const std::size_t h_at = svg.find("height=\""), w_at = svg.find("width=\"");
+  const double width = std::stod(svg.substr(w_at + 7)), height = std::stod(svg.substr(h_at + 8));
+  CHECK(width == 800);
+  std::istringstream paths(svg);
+  std::string line;
+  std::vector<std::string> fills;
+  while(std::getline(paths, line)) {
+    const std::size_t d = line.find(" d=\"M");
+    if(d == std::string::npos) continue;
+    std::string coords = line.substr(d + 5, line.find('Z', d) - d - 5);
+    std::replace(coords.begin(), coords.end(), 'L', ' ');
+    std::istringstream xy(coords);
+    double x, y;
+    while(xy >> x >> y) {
+      CHECK((x >= 0 && x <= width));
+      CHECK((y >= 0 && y <= height));
+    }
+    fills.push_back(line);
+  }
+  REQUIRE(fills.size() == num_faces(sphere) + num_faces(plane));
+  // back to front: without red marks, the first face drawn of the closed sphere is a back face
+  // (blue-grey: more blue than red) and the last a front face (grey)
+  view.marked_angle_degrees = 0;
+  std::ostringstream alone;
+  PR::write_mesh_svg(alone, sphere, view);
+  const std::string s2 = alone.str();
+  CHECK(s2.find("class=\"marked\"") == std::string::npos);
+  const std::size_t first = s2.find("fill=\"#"), last = s2.rfind("fill=\"#");
+  auto blue_over_red = [&](std::size_t at) {
+    return std::stoi(s2.substr(at + 11, 2), nullptr, 16) > std::stoi(s2.substr(at + 7, 2), nullptr, 16);
+  };
+  REQUIRE(first != last);
+  CHECK(blue_over_red(first));
+  CHECK_FALSE(blue_over_red(last));
 }
 
 // ------------------------------------------------------------------ named parameters

@@ -228,7 +228,7 @@ public:
   template <class OutputIterator>
   OutputIterator arcs(OutputIterator out) const
   {
-    for(std::size_t i = 0; i < arcs_.size(); ++i) if(alive_[i]) *out++ = arcs_[i];
+    for(std::size_t i = 0; i < alive_.size(); ++i) if(alive_[i]) *out++ = stored(i);
     return out;
   }
 
@@ -237,6 +237,8 @@ public:
   {
     arcs_.clear();
     alive_.clear();
+    slot_of_.clear();
+    free_.clear();
     fenwick_.clear();
     for(auto& l : arcs_in_face_) l.clear();
     alive_count_ = 0;
@@ -258,15 +260,15 @@ public:
       const double total = fenwick_.total();
       double rest = 0;
       const std::size_t i = fenwick_.find(u01() * total, rest);
-      if(i < arcs_.size() && alive_[i]) {
+      if(i < alive_.size() && alive_[i]) {
         const double len = fenwick_.weight(i);
         const double t = len > 0 ? std::min(1.0, std::max(0.0, rest / len)) : 0.5;
         arc = i;
-        return location(arcs_[i].arc, t);
+        return location(stored(i).arc, t);
       }
       fenwick_.rebuild(); // rounding drift: rebuild and draw again
       if(attempt > 3) {   // fall back to the first live arc
-        for(std::size_t k = 0; k < arcs_.size(); ++k) if(alive_[k]) { arc = k; return location(arcs_[k].arc, u01()); }
+        for(std::size_t k = 0; k < alive_.size(); ++k) if(alive_[k]) { arc = k; return location(stored(k).arc, u01()); }
       }
     }
   }
@@ -298,8 +300,8 @@ public:
       for(std::size_t j = 0; j < arcs.size(); ++j)
         for(std::size_t i : arcs_in_face_[get(fim_, arcs[j].face)]) {
           std::vector<double> ti;
-          internal::circle_arc_crossings(arcs_[i].arc, arcs[j], ti);
-          internal::circle_arc_crossings(arcs[j], arcs_[i].arc, new_cuts[c][j]);
+          internal::circle_arc_crossings(stored(i).arc, arcs[j], ti);
+          internal::circle_arc_crossings(arcs[j], stored(i).arc, new_cuts[c][j]);
           if(!ti.empty()) stored_cuts.emplace_back(i, std::move(ti));
         }
     }
@@ -338,7 +340,7 @@ public:
 
   /// Drops a live arc (the sampler's safety net: an arc found inside the region of an earlier
   /// sample, which rounding in the conic case can leave behind).
-  void remove_arc(std::size_t i) { if(i < arcs_.size() && alive_[i]) kill(i); }
+  void remove_arc(std::size_t i) { if(i < alive_.size() && alive_[i]) kill(i); }
 
   /// decisions taken by crossing directions / by in_old_disks (for statistics)
   /// @{
@@ -391,8 +393,9 @@ private:
     }
     std::size_t i = first;
     std::size_t done = 0;
+    std::vector<std::size_t> run;
     while(done < n) {
-      std::vector<std::size_t> run = {i};
+      run.assign(1, i);
       std::size_t l = i;
       while(true) {
         const std::size_t next = chain.closed ? (l + 1) % n : l + 1;
@@ -427,10 +430,24 @@ private:
     }
   }
 
+  // Arcs are numbered in the order they are made (the draws walk the Fenwick tree in that order,
+  // which fixes the samples for a seed), but a dead arc's record slot is reused: the records (about
+  // 200 bytes each) take as much room as the largest live boundary, not as every arc ever made
+  // (several per sample); only 17 bytes per arc ever made remain (the Fenwick tree, the slot, the
+  // live flag).
   void add(const Arc& a, std::size_t sample)
   {
-    const std::size_t id = arcs_.size();
-    arcs_.push_back({a, sample});
+    const std::size_t id = alive_.size();
+    std::size_t slot;
+    if(!free_.empty()) {
+      slot = free_.back();
+      free_.pop_back();
+      arcs_[slot] = {a, sample};
+    } else {
+      slot = arcs_.size();
+      arcs_.push_back({a, sample});
+    }
+    slot_of_.push_back(slot);
     alive_.push_back(1);
     fenwick_.set(id, a.length());
     arcs_in_face_[get(fim_, a.face)].push_back(id);
@@ -442,9 +459,12 @@ private:
     alive_[i] = 0;
     fenwick_.set(i, 0.0);
     --alive_count_;
-    auto& list = arcs_in_face_[get(fim_, arcs_[i].arc.face)];
+    auto& list = arcs_in_face_[get(fim_, stored(i).arc.face)];
     list.erase(std::remove(list.begin(), list.end(), i), list.end());
+    free_.push_back(slot_of_[i]);
   }
+
+  const Stored_arc& stored(std::size_t i) const { return arcs_[slot_of_[i]]; }
 
   static void split(const Arc& a, std::vector<double>& cuts, std::vector<Arc>& pieces)
   {
@@ -462,7 +482,7 @@ private:
   void replace_by_kept_pieces(std::size_t i, std::vector<double>& cuts, Keep keep)
   {
     std::vector<Arc> pieces;
-    const Arc a = arcs_[i].arc;
+    const Arc a = stored(i).arc;
     split(a, cuts, pieces);
     std::vector<char> kept(pieces.size());
     bool all = true;
@@ -471,7 +491,7 @@ private:
       all = all && kept[k];
     }
     if(all && pieces.size() == 1) return;
-    const std::size_t sample = arcs_[i].sample;
+    const std::size_t sample = stored(i).sample;
     kill(i);
     // merge consecutive kept pieces back together
     for(std::size_t k = 0; k < pieces.size();) {
@@ -489,6 +509,8 @@ private:
   FIM fim_;
   std::vector<Stored_arc> arcs_;
   std::vector<char> alive_;
+  std::vector<std::size_t> slot_of_;   // arc number -> its record in arcs_
+  std::vector<std::size_t> free_;      // records of dead arcs, reused by add()
   std::vector<std::vector<std::size_t>> arcs_in_face_;
   internal::Fenwick_tree fenwick_;
   std::size_t alive_count_ = 0;

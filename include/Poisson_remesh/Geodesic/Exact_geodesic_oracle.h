@@ -201,6 +201,9 @@ struct Iso_curve
 namespace internal {
 
 constexpr double kPi = 3.14159265358979323846;
+// 1 / sqrt(3), rounded up: the farthest a point of a triangle can be from its nearest corner, per
+// unit of the longest edge
+constexpr double kInvSqrt3 = 0.5774;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Vec2
@@ -337,6 +340,16 @@ public:
       flayout[3 * f + 1] = apex[3 * f].x;
       flayout[3 * f + 2] = apex[3 * f].y;
     }
+    // the unit direction of each edge in its face's frame, computed once: the edge frames are
+    // asked for by every distance evaluation and every inside-face test
+    edge_dir.assign(3 * nf, Vec2{1., 0.});
+    for(std::size_t f = 0; f < nf; ++f)
+      for(int k = 0; k < 3; ++k)
+      {
+        const Vec2 d = corner_2(int(f), (k + 1) % 3) - corner_2(int(f), k);
+        const double l = norm(d);
+        if(l > 0.) edge_dir[3 * f + k] = Vec2{d.x / l, d.y / l};
+      }
     // vertex -> incident (face, corner) lists, angle sums, border flags
     vf_start.assign(nv + 1, 0);
     for(std::size_t s = 0; s < 3 * nf; ++s)
@@ -392,19 +405,13 @@ public:
   /// face frame -> frame of edge k (origin at corner k, x towards corner k+1, y >= 0 inside the face)
   Vec2 to_edge_frame(int f, int k, Vec2 p) const
   {
-    const Vec2 a = corner_2(f, k), b = corner_2(f, (k + 1) % 3);
-    const Vec2 d = b - a;
-    const double l = norm(d);
-    const Vec2 u = (l > 0.) ? Vec2{d.x / l, d.y / l} : Vec2{1., 0.};
+    const Vec2 a = corner_2(f, k), u = edge_dir[3 * f + k];
     const Vec2 q = p - a;
     return {dot(q, u), cross(u, q)};
   }
   Vec2 from_edge_frame(int f, int k, Vec2 p) const
   {
-    const Vec2 a = corner_2(f, k), b = corner_2(f, (k + 1) % 3);
-    const Vec2 d = b - a;
-    const double l = norm(d);
-    const Vec2 u = (l > 0.) ? Vec2{d.x / l, d.y / l} : Vec2{1., 0.};
+    const Vec2 a = corner_2(f, k), u = edge_dir[3 * f + k];
     return {a.x + p.x * u.x - p.y * u.y, a.y + p.x * u.y + p.y * u.x};
   }
   Vec2 bary_to_2(int f, const std::array<double, 3>& b) const
@@ -434,6 +441,7 @@ public:
   std::vector<double> elen;   // per undirected edge
   std::vector<Vec2> apex;     // 3f+k -> corner k+2 in the frame of edge k
   std::vector<double> flayout;  // 3f + {0,1,2} -> |v0v1|, x2, y2
+  std::vector<Vec2> edge_dir;   // 3f+k -> unit direction of edge k in the face frame
   std::vector<int> vf_start, vf_list;  // vertex -> slots 3f+corner
   std::vector<char> pseudo;  // saddle or border vertex
   int num_edges = 0;
@@ -1425,14 +1433,18 @@ private:
         Lmax = (std::max)(Lmax, level.at(P[i]));
       }
       const double tie = 1e-11 * (std::max)(Lmax, m.diag * 1e-6);
-      // faces entirely closer than the level (d(p) <= d(v_i) + |p v_i|) have no arc
-      double dmin = internal::kInf, lmax = 0.;
+      // faces entirely closer than the level have no arc. d(p) <= d(v_i) + |p v_i| for every
+      // corner, so d <= dmin + lmax on the face; and every point of a triangle is within
+      // lmax / sqrt(3) of its nearest corner (the circumradius of an acute triangle, whose largest
+      // angle is at least 60 degrees, is at most lmax / sqrt(3)), so d <= dmax + lmax / sqrt(3).
+      double dmin = internal::kInf, dmax = 0., lmax = 0.;
       for(int i = 0; i < 3; ++i)
       {
         dmin = (std::min)(dmin, m_dist[m.fv[3 * f + i]]);
+        dmax = (std::max)(dmax, m_dist[m.fv[3 * f + i]]);
         lmax = (std::max)(lmax, m.edge_length(3 * f + i));
       }
-      if(dmin + lmax < Lmin) continue;
+      if(dmin + lmax < Lmin || dmax + lmax * internal::kInvSqrt3 < Lmin) continue;
       collect_generators(f, Lmax, gens);
       if(gens.empty()) continue;
       // the curve of generator g: |x - c| = r + a . (x - c), r = level(c) - sigma (a circle of

@@ -55,6 +55,23 @@ inline std::string svg_rgb(const std::array<double, 3>& c, double shade)
   return b;
 }
 
+/// `axis` (0..5, see Density_map_view) or, when it is negative, the view along the smallest
+/// extent of `tm`'s bounding box (0, 1 or 2), so that the widest side shows
+template <class TriangleMesh>
+int viewing_axis(const TriangleMesh& tm, int axis)
+{
+  if(axis >= 0) return axis;
+  auto vpm = get(CGAL::vertex_point, tm);
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for(auto v : vertices(tm)) {
+    const auto& p = get(vpm, v);
+    const double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    for(int i = 0; i < 3; ++i) { lo[i] = std::min(lo[i], c[i]); hi[i] = std::max(hi[i], c[i]); }
+  }
+  const double ext[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  return ext[2] <= ext[0] && ext[2] <= ext[1] ? 0 : (ext[1] <= ext[0] ? 1 : 2);
+}
+
 } // namespace internal
 
 /*!
@@ -67,17 +84,7 @@ void write_density_map_svg(std::ostream& os, const TriangleMesh& tm, VertexValue
 {
   typedef typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type Point_3;
   auto vpm = get(CGAL::vertex_point, tm);
-  int axis = view.axis;
-  if(axis < 0) {
-    double lo3[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi3[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for(auto v : vertices(tm)) {
-      const Point_3& p = get(vpm, v);
-      const double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
-      for(int i = 0; i < 3; ++i) { lo3[i] = std::min(lo3[i], c[i]); hi3[i] = std::max(hi3[i], c[i]); }
-    }
-    const double ext[3] = {hi3[0] - lo3[0], hi3[1] - lo3[1], hi3[2] - lo3[2]};
-    axis = ext[2] <= ext[0] && ext[2] <= ext[1] ? 0 : (ext[1] <= ext[0] ? 1 : 2);
-  }
+  const int axis = internal::viewing_axis(tm, view.axis);
   const int a = axis % 3, sign = axis < 3 ? -1 : 1;
   // screen axes (u right, v up) and depth w towards the viewer
   const int ui = a == 0 ? 0 : (a == 1 ? 0 : 1), vi = a == 0 ? 1 : (a == 1 ? 2 : 2);

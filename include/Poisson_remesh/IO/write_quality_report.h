@@ -8,6 +8,7 @@
 #define POISSON_REMESH_IO_WRITE_QUALITY_REPORT_H
 
 #include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/internal/xml_escape.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -41,21 +42,6 @@ inline std::string json_escape(const std::string& s)
     if(c == '"' || c == '\\') { out += '\\'; out += c; }
     else if(static_cast<unsigned char>(c) < 0x20) { char buf[8]; std::snprintf(buf, sizeof(buf), "\\u%04x", c); out += buf; }
     else out += c;
-  }
-  return out;
-}
-
-inline std::string xml_escape(const std::string& s)
-{
-  std::string out;
-  for(char c : s) {
-    switch(c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
   }
   return out;
 }
