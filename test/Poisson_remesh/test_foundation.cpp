@@ -14,6 +14,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
@@ -428,6 +429,18 @@ TEST_CASE("mesh pictures: one path per face, back to front, the triangles under 
   REQUIRE(first != last);
   CHECK(blue_over_red(first));
   CHECK_FALSE(blue_over_red(last));
+  // the side seen first is the front, whatever the orientation: the sphere turned inside out
+  // looks the same
+  Mesh inside_out = sphere;
+  CGAL::Polygon_mesh_processing::reverse_face_orientations(inside_out);
+  std::ostringstream flipped;
+  PR::write_mesh_svg(flipped, inside_out, view);
+  const std::string s3 = flipped.str();
+  auto blue_over_red_3 = [&](std::size_t at) {
+    return std::stoi(s3.substr(at + 11, 2), nullptr, 16) > std::stoi(s3.substr(at + 7, 2), nullptr, 16);
+  };
+  CHECK(blue_over_red_3(s3.find("fill=\"#")));
+  CHECK_FALSE(blue_over_red_3(s3.rfind("fill=\"#")));
 }
 
 // ------------------------------------------------------------------ named parameters

@@ -103,6 +103,8 @@ struct Svg_face
   double depth;
   std::array<double, 6> xy;
   bool front, marked;
+  double facing;   // the unit normal's component towards the viewer
+  double lambert;  // |cosine| of the angle to the light
   double shade;
 };
 
@@ -133,13 +135,23 @@ std::vector<Svg_face> svg_faces(const TriangleMesh& tm, const Svg_camera& cam, c
       face.xy[2 * k] = svg_dot(p[k], cam.u);
       face.xy[2 * k + 1] = svg_dot(p[k], cam.v);
     }
-    face.front = svg_dot(n, cam.w) >= 0;
-    const double lambert = std::abs(svg_dot(n, light));
-    face.shade = face.front ? 0.35 + 0.65 * lambert : 0.3 + 0.3 * lambert;
+    face.facing = svg_dot(n, cam.w);
+    face.lambert = std::abs(svg_dot(n, light));
     face.marked = view.marked_angle_degrees > 0 && svg_smallest_angle_degrees(p[0], p[1], p[2]) < view.marked_angle_degrees;
     out.push_back(face);
   }
   std::sort(out.begin(), out.end(), [](const Svg_face& a, const Svg_face& b) { return a.depth < b.depth; });
+  // The side seen first is the front: the nearest faces (the last 1% drawn) decide, so that a
+  // mesh oriented inwards still shows grey, and only the far side of an open mesh seen through a
+  // hole shows blue-grey
+  double near_facing = 0;
+  for(std::size_t i = out.size() - std::min(out.size(), std::max<std::size_t>(1, out.size() / 100)); i < out.size(); ++i)
+    near_facing += out[i].facing;
+  const double side = near_facing < 0 ? -1 : 1;
+  for(Svg_face& face : out) {
+    face.front = side * face.facing >= 0;
+    face.shade = face.front ? 0.35 + 0.65 * face.lambert : 0.3 + 0.3 * face.lambert;
+  }
   return out;
 }
 
