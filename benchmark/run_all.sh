@@ -36,10 +36,10 @@ examples="$build/examples/Poisson_remesh"
 here="$root/benchmark/Poisson_remesh"
 
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
-dirty=$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null | head -1)
+dirty=$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null | sed -n 1p)
 [ -z "$dirty" ] || commit="$commit (with uncommitted changes)"
 cpu=$(grep -m1 "model name" /proc/cpuinfo | sed 's/.*: //')
-compiler=$(${CXX:-c++} --version | head -1)
+compiler=$(${CXX:-c++} --version | sed -n 1p)
 # stamp FILE COMMAND...: the file's first lines say where it comes from
 stamp() {
   local file=$1; shift

@@ -19,7 +19,7 @@ for run in 1 2 3; do
   if [ -z "$seconds" ] || [ "$(echo "$s < $seconds" | bc -l)" = 1 ]; then seconds=$s; fi
 done
 perf report -i "$tmp/perf.data" --children -g none --stdio 2> /dev/null > "$tmp/report"
-share() { grep -F "$1" "$tmp/report" | head -1 | awk '{ sub("%", "", $1); print $1 }'; }
+share() { grep -m1 -F "$1" "$tmp/report" | awk '{ sub("%", "", $1); print $1 }'; }
 total=$(share "internal::poisson_disk_sample<")
 printf '| %s | %s | %.3f | %.1f' "$(basename "$mesh" .off)" "$samples" "$seconds" "$(echo "$seconds * 1000000 / $samples" | bc -l)"
 for stage in "::propagate_impl<" "::extract_iso_arcs<" "::chain_arcs_by_endpoints<" "::update<"; do
