@@ -50,6 +50,7 @@ stamp() {
     echo
     cat "$file"; } > "$tmp"
   mv "$tmp" "$file"
+  chmod 644 "$file"
 }
 step() { echo "== $* ($(date -u +%H:%M:%S))"; }
 
