@@ -8,7 +8,11 @@
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -101,5 +105,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::fprintf(stderr, "input V %zu F %zu chi %ld, output V %zu F %zu chi %ld\n", std::size_t(used), std::size_t(faces(in).size()),
                  chi_in, std::size_t(vertices(out).size()), std::size_t(faces(out).size()), chi_out);
   if(chi_in != chi_out) std::abort();
+  // every output vertex on the input surface (the remesher projects onto it): within 1e-7 of the
+  // input's bounding-box diagonal, measured with CGAL's AABB tree
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+  CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(faces(in).first, faces(in).second, in);
+  const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(in);
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                    CGAL::square(box.zmax() - box.zmin()));
+  for(auto v : vertices(out)) {
+    const double d = std::sqrt(tree.squared_distance(out.point(v)));
+    if(std::getenv("POISSON_REMESH_FUZZ_VERBOSE") && d > 1e-7 * diagonal)
+      std::fprintf(stderr, "vertex %zu is %g (relative %g) off the input\n", std::size_t(v), d, d / diagonal);
+    if(d > 1e-7 * diagonal) std::abort();
+  }
   return 0;
 }
