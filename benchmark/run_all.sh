@@ -8,8 +8,10 @@
 #             the program's wall time against its remesh on six meshes, the bad-input table and
 #             the pictures (fandisk, triceratops, cheese, head: input, ours and CGAL's);
 #   (full)    also the adaptive comparison, the program's overhead on every CGAL data mesh with
-#             500-40,000 vertices, the scale series (10k to 1.2M faces, about 20 minutes) and
-#             both fuzz targets on 100,000 inputs each.
+#             500-40,000 vertices, the corpus run (every such mesh, ours beside CGAL's, the floor,
+#             the ablation of each step beyond the paper; again with the peer's sharp edges free),
+#             the scale series (10k to 1.2M faces, about 20 minutes) and both fuzz targets on
+#             100,000 inputs each.
 #
 # Builds first (scripts/build.sh: installs what is missing with apt-get, Release, ccache).
 # Outputs go to benchmark/Poisson_remesh/generated/ (or --out DIR); the pictures to
@@ -24,7 +26,7 @@ while [ $# -gt 0 ]; do
     --quick) quick=1 ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
-    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_all.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -96,6 +98,15 @@ if [ $quick = 0 ]; then
     --contenders cgal_isotropic,poisson_remesh,poisson_adaptive --factor 0.5 \
     --markdown "$out/adaptive_results.md" --json "$out/adaptive_results.json" > /dev/null
   stamp "$out/adaptive_results.md" "$bench/remesh_benchmark --meshes dino,elephant,bull,cow,knot1,camel,lion-head --contenders cgal_isotropic,poisson_remesh,poisson_adaptive --factor 0.5"
+
+  step "the CGAL corpus beside isotropic_remeshing, with the ablation (about an hour on 2 cores)"
+  "$bench/corpus_benchmark" --data "$build/data" --ablation all --jobs 2 \
+    --markdown "$out/corpus_results.md" --json "$out/corpus_results.json" > /dev/null
+  stamp "$out/corpus_results.md" "$bench/corpus_benchmark --ablation all --jobs 2"
+  step "the CGAL corpus, the peer without constrained sharp edges"
+  "$bench/corpus_benchmark" --data "$build/data" --peer-sharp-angle 0 --jobs 2 \
+    --markdown "$out/corpus_results_unconstrained_peer.md" --json "$out/corpus_results_unconstrained_peer.json" > /dev/null
+  stamp "$out/corpus_results_unconstrained_peer.md" "$bench/corpus_benchmark --peer-sharp-angle 0 --jobs 2"
 
   step "scale series (about 20 minutes)"
   bash "$here/scale.sh" "$build" "$out/scale_results"

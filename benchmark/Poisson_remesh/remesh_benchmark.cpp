@@ -8,6 +8,7 @@
 //
 // usage: remesh_benchmark [--meshes fandisk,triceratops,...] [--factor F] [--contenders a,b]
 //                         [--markdown FILE] [--json FILE]   (tables on stdout; files only when named)
+#include "benchmark_support.h"
 #include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
@@ -38,6 +39,10 @@
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Surface_mesh<K::Point_3> Mesh;
 namespace PR = Poisson_remesh;
+using benchmark_support::fmt;
+using benchmark_support::machine_description;
+using benchmark_support::peak_memory_mib;
+using benchmark_support::split;
 
 struct Row
 {
@@ -72,24 +77,6 @@ static std::map<std::string, Contender> contenders()
        return PR::Peers::isotropic_remeshing_at_vertex_count(input, output, s).seconds;
      }},
   };
-}
-
-static double peak_memory_mib()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while(std::getline(status, line))
-    if(line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0;
-}
-
-static std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while(std::getline(ss, item, ',')) if(!item.empty()) out.push_back(item);
-  return out;
 }
 
 // Runs in the child: everything for one row, written as "key value" lines to fd.
@@ -146,13 +133,7 @@ static Row run_in_child(const std::string& contender, const Contender& run, cons
   close(fds[0]);
   int status = 0;
   waitpid(pid, &status, 0);
-  std::istringstream is(text);
-  std::string key;
-  std::map<std::string, double> v;
-  while(is >> key) {
-    if(key == "error") { std::getline(is, row.error); continue; }
-    is >> v[key];
-  }
+  std::map<std::string, double> v = benchmark_support::parse_report(text, row.error);
   if(v["ok"] != 1) {
     if(row.error.empty()) row.error = WIFSIGNALED(status) ? std::string("killed by signal ") + strsignal(WTERMSIG(status)) : "failed";
     return row;
@@ -164,28 +145,6 @@ static Row run_in_child(const std::string& contender, const Contender& run, cons
   row.self_intersections_away = v["self_intersections_away"];
   row.genus_kept = v["genus_kept"]; row.seconds = v["seconds"]; row.peak_mib = v["peak_mib"];
   return row;
-}
-
-static std::string machine_description()
-{
-  std::string cpu = "unknown CPU";
-  std::ifstream info("/proc/cpuinfo");
-  std::string line;
-  while(std::getline(info, line))
-    if(line.rfind("model name", 0) == 0) { cpu = line.substr(line.find(':') + 2); break; }
-  struct utsname u;
-  uname(&u);
-  std::ostringstream os;
-  os << cpu << ", " << sysconf(_SC_NPROCESSORS_ONLN) << " cores, " << u.sysname << " " << u.release << " " << u.machine
-     << ", CGAL " << CGAL_VERSION_STR << ", g++ " << __VERSION__;
-  return os.str();
-}
-
-static std::string fmt(double x, int digits)
-{
-  char b[64];
-  std::snprintf(b, sizeof(b), "%.*f", digits, x);
-  return b;
 }
 
 int main(int argc, char** argv)

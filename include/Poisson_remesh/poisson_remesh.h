@@ -259,10 +259,12 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     }
     auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
     auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
-    Relaxation_settings settings;
+    // (the operators' switches: Relaxation_settings' defaults unless given whole; the two named
+    // parameters below override their members)
+    Relaxation_settings settings = choose_parameter(get_parameter(np, internal_np::relaxation_settings), Relaxation_settings());
     settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-    settings.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.max_deviation);
-    if(!(settings.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
+    settings.fidelity.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.fidelity.max_deviation);
+    if(!(settings.fidelity.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
     // the sampling density at each vertex, for the Eq. 6 weights (Eq. 1: ~ 1 / r^2 at each sample's
     // radius; 1 for a uniform density); a vertex the relaxer adds takes its neighbours' mean
     auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
@@ -350,7 +352,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   `fidelity_tolerance` (default 0.008: after the rounds, input vertices farther than this times
   the input's bounding-box diagonal from the mesh -- rims and crests finer than the sample
   spacing -- are inserted, at most 1% of the vertex count; 0 disables: see
-  Relaxation_settings::max_deviation),
+  Relaxation_settings::fidelity),
   `feature_grading` (default true; uniform density only: finer sampling around pointed tips --
   horns, claws thinner than the spacing -- graded back to it, where the spacing leaves sharp
   triangles; the output has a few more vertices there: see internal/feature_grading.h),

@@ -465,17 +465,17 @@ TEST_CASE("the relaxer's untangling removes a crossing made by a vertex pushed t
   REQUIRE(own > 0);
   PR::Relaxation_settings s;   // everything off but the last Lloyd pass, its Delaunay flips and the untangling
   s.iterations = 0;
-  s.collapse_slivers = false;
-  s.max_deviation = 0;
-  s.long_edge_ratio = 0;
-  s.smoothing_rounds = s.regularity_rounds = s.angle_rounds = s.refinement_rounds = 0;
+  s.sliver_collapse.enabled = false;
+  s.fidelity.max_deviation = 0;
+  s.long_edge_split.ratio = 0;
+  s.angle_smoothing.rounds = s.regularity.rounds = s.angle_optimization.rounds = s.refinement.rounds = 0;
   s.delaunay_flips = false;
   for(unsigned int rounds : {0u, 3u}) {
     INFO("untangle rounds " << rounds);
     Mesh m = in;
     m.point(v) = Point(0.8, 0.05, 0.02);
     REQUIRE(crossings(m) > own);
-    s.untangle_rounds = rounds;
+    s.untangling.rounds = rounds;
     const auto stats = relaxer.relax(m, [](Mesh::Edge_index) { return false; }, [&](Mesh::Vertex_index x) { return x != v; }, s);
     if(rounds == 0) {
       CHECK(crossings(m) > own);

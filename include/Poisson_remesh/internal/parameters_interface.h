@@ -27,6 +27,7 @@ POISSON_REMESH_add_named_parameter(fidelity_tolerance_t, fidelity_tolerance, fid
 POISSON_REMESH_add_named_parameter(feature_grading_t, feature_grading, feature_grading)
 // remesher: remeshes made again, finer where the last one crossed itself or kept sharp triangles
 POISSON_REMESH_add_named_parameter(regrading_attempts_t, regrading_attempts, regrading_attempts)
+POISSON_REMESH_add_named_parameter(relaxation_settings_t, relaxation_settings, relaxation_settings)
 
 // input reading and validation
 POISSON_REMESH_add_named_parameter(repair_degenerate_faces_t, repair_degenerate_faces, repair_degenerate_faces)

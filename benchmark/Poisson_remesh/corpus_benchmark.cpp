@@ -1,0 +1,718 @@
+// corpus_benchmark -- the remesher on the whole CGAL data corpus beside CGAL's isotropic_remeshing,
+// the floor judged on every mesh, and (with --ablation) each step beyond the paper switched off in
+// turn (issues 22 and 24).
+//
+// The corpus: every OFF mesh of CGAL's data set with 500-40,000 vertices (--min-vertices,
+// --max-vertices), each remeshed at its own vertex count with seed 1. Each (mesh, contender) runs
+// in a child process (fork): its time is the wall clock of the library call alone, its peak memory
+// (VmHWM, reset just before the call) its own, and a crash or a timeout ends that row only.
+// --jobs N runs N children at once (the times then share the machine; the default is 1).
+//
+// The peer is CGAL's isotropic_remeshing with --peer-iterations (10) and the edges sharper than
+// --peer-sharp-angle (60; 0: none) constrained, its edge length calibrated until its vertex count is
+// within 1% of the input's (at most 6 runs; the kept run is timed). Ours is run again with the
+// target scaled by target / V while it lands more than 2% away (--calibrate N runs at most; 1: no
+// calibration). Each row says where it landed.
+//
+// The floor (issue 22): θmin ≥ 30° away from input corners sharper than that; θ̄min ≥ 52°;
+// irregular ≤ 25%; Hausdorff ≤ 1% of the diagonal, or ≤ 0.8× the peer's where the peer is over 1%
+// too; the input's genus, components and border count; no self-intersection away from the input's
+// own.
+//
+// The figures: the package's quality_report() (the same definitions as everywhere: θmin away from
+// the input's sharp corners, crossings away from the input's own, Hausdorff bounded to 0.1%), and
+// here, from CGAL's primitives, the RMS distance (AABB tree) and the topology (genus, components,
+// borders).
+//
+// usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices N] [--max-vertices N]
+//            [--seed S] [--jobs N] [--timeout SECONDS] [--peer-iterations N] [--peer-sharp-angle DEG]
+//            [--calibrate N] [--ablation all|op,op] [--markdown FILE] [--json FILE]
+#include "benchmark_support.h"
+#include "isotropic_remeshing_peer.h"
+#include <Poisson_remesh/poisson_remesh.h>
+#include <Poisson_remesh/quality_report.h>
+#include <Poisson_remesh/read_surface_mesh.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/version.h>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3> Mesh;
+namespace PR = Poisson_remesh;
+using benchmark_support::fmt;
+using benchmark_support::machine_description;
+using benchmark_support::peak_memory_mib;
+using benchmark_support::split;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+// ---- the floor's figures, measured on a mesh against its input -------------------------------
+
+struct Figures
+{
+  double vertices = 0, min_angle = 180, min_angle_away = 180, mean_min_angle = 0, max_angle = 0, irregular = 0;
+  double rms = 0, hausdorff = 0;   // over the input's bounding-box diagonal
+  double self_intersections_away = 0, topology_kept = 0;
+  double seconds = 0, peak_mib = 0, runs = 1;
+};
+
+static double diagonal(const Mesh& m)
+{
+  CGAL::Bbox_3 b;
+  for(auto v : vertices(m)) b += m.point(v).bbox();
+  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+}
+
+// genus, components and border cycles of a triangle mesh
+static std::array<long, 3> topology(const Mesh& m)
+{
+  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  const std::size_t components = PMP::connected_components(m, component);
+  std::vector<long> V(components, 0), E(components, 0), F(components, 0), B(components, 0);
+  for(auto f : faces(m)) ++F[get(component, f)];
+  std::set<std::pair<std::size_t, Mesh::Vertex_index>> seen;
+  for(auto f : faces(m))
+    for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
+      const std::size_t c = get(component, f);
+      if(seen.insert({c, target(h, m)}).second) ++V[c];
+      if(is_border(opposite(h, m), m) || h < opposite(h, m)) ++E[c];
+    }
+  std::vector<Mesh::Halfedge_index> borders;
+  PMP::extract_boundary_cycles(m, std::back_inserter(borders));
+  for(auto h : borders) ++B[get(component, face(opposite(h, m), m))];
+  long genus = 0, border_cycles = 0;
+  for(std::size_t c = 0; c < components; ++c) {
+    genus += (2 - (V[c] - E[c] + F[c]) - B[c]) / 2;
+    border_cycles += B[c];
+  }
+  return {genus, long(components), border_cycles};
+}
+
+static Figures measure(const Mesh& out, const Mesh& input)
+{
+  Figures r;
+  r.vertices = double(std::distance(vertices(out).begin(), vertices(out).end()));
+  const double diag = diagonal(input);
+  // the package's quality report for the angles, valences, Hausdorff distance and crossings (θmin
+  // away from the input's sharp corners and crossings away from the input's own are defined there)
+  const PR::Quality_report q = PR::quality_report(out, input);
+  r.min_angle = q.min_angle;
+  r.min_angle_away = q.min_angle_away_from_sharp_corners.value_or(q.min_angle);
+  r.mean_min_angle = q.mean_min_angle;
+  r.max_angle = q.max_angle;
+  r.irregular = q.irregular_share;
+  r.hausdorff = q.hausdorff.value_or(-1);
+  r.self_intersections_away = double(q.number_of_self_intersecting_face_pairs_away_from_reference_ones.value_or(q.number_of_self_intersecting_face_pairs));
+  // RMS distance, both ways, over 30,000 uniform points on each surface
+  double sq = 0;
+  std::size_t count = 0;
+  for(int side = 0; side < 2; ++side) {
+    const Mesh& from = side ? input : out;
+    const Mesh& to = side ? out : input;
+    typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+    CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(faces(to).first, faces(to).second, to);
+    tree.accelerate_distance_queries();
+    std::vector<K::Point_3> points;
+    PMP::sample_triangle_mesh(from, std::back_inserter(points),
+                              CGAL::parameters::use_random_uniform_sampling(true).number_of_points_on_faces(30000)
+                                .do_sample_vertices(false).do_sample_edges(false).random_seed(7));
+    for(const auto& p : points) { sq += tree.squared_distance(p); ++count; }
+  }
+  r.rms = count ? std::sqrt(sq / double(count)) / diag : 0;
+  r.topology_kept = topology(out) == topology(input) ? 1 : 0;
+  return r;
+}
+
+// ---- the contenders ----------------------------------------------------------------------------
+
+// A step beyond the paper, and how it is switched off.
+struct Operator
+{
+  std::string name, what;
+  std::function<void(PR::Relaxation_settings&, bool& feature_grading, unsigned int& remakes)> off;
+};
+
+static std::vector<Operator> operators()
+{
+  typedef PR::Relaxation_settings S;
+  return {
+    {"lloyd_guard", "Lloyd moves that would make a sharp triangle go half way or not", [](S& s, bool&, unsigned&) { s.lloyd_guard.min_angle = 0; }},
+    {"long_edge_split", "long feature edges split", [](S& s, bool&, unsigned&) { s.long_edge_split.ratio = 0; }},
+    {"sliver_collapse", "short edges of slivers collapsed", [](S& s, bool&, unsigned&) { s.sliver_collapse.enabled = false; }},
+    {"fidelity", "input points far from the mesh inserted", [](S& s, bool&, unsigned&) { s.fidelity.max_deviation = 0; }},
+    {"angle_smoothing", "pattern search for the sum of smallest angles", [](S& s, bool&, unsigned&) { s.angle_smoothing.rounds = 0; }},
+    {"regularity_flips", "flips that lower the irregular count", [](S& s, bool&, unsigned&) { s.regularity.rounds = 0; }},
+    {"angle_optimization", "pattern search for the smallest angle", [](S& s, bool&, unsigned&) { s.angle_optimization.rounds = 0; }},
+    {"refinement", "flip, removal or insertion at triangles under 30°", [](S& s, bool&, unsigned&) { s.refinement.rounds = 0; }},
+    {"final_regularity", "last regularity flips keeping 30°", [](S& s, bool&, unsigned&) { s.regularity.final_min_angle = 0; }},
+    {"untangling", "moves, flips and collapses removing crossings", [](S& s, bool&, unsigned&) { s.untangling.rounds = 0; }},
+    {"feature_grading", "finer sampling around pointed tips", [](S&, bool& g, unsigned&) { g = false; }},
+    {"remakes", "whole remakes, finer where the result failed", [](S&, bool&, unsigned& r) { r = 0; }},
+  };
+}
+
+struct Options
+{
+  std::string data = POISSON_REMESH_DATA_DIR;
+  unsigned int seed = 1, jobs = 1, timeout = 900, peer_iterations = 10, calibrate = 3;
+  double peer_sharp_angle = 60;
+};
+static Options options;
+
+// Runs one contender ("cgal", "ours" or "ours-<operator>") on a mesh, in the child.
+static Figures run_contender(const std::string& contender, const Mesh& input)
+{
+  const double target = double(num_vertices(input));
+  Mesh output;
+  Figures f;
+  if(contender == "cgal") {
+    PR::Peers::Isotropic_remeshing_settings s;
+    s.target_vertex_count = target;
+    s.sharp_angle = options.peer_sharp_angle;
+    s.iterations = options.peer_iterations;
+    s.calibration_runs = 6;
+    std::ofstream("/proc/self/clear_refs") << "5";
+    const auto r = PR::Peers::isotropic_remeshing_at_vertex_count(input, output, s);
+    f.peak_mib = peak_memory_mib();
+    f.seconds = r.seconds;
+    f.runs = r.runs;
+  } else {
+    PR::Relaxation_settings settings;
+    bool grading = true;
+    unsigned int remakes = 6;
+    const bool ablated = contender != "ours";
+    if(ablated) {
+      bool found = false;
+      for(const Operator& op : operators())
+        if(contender == "ours-" + op.name) { op.off(settings, grading, remakes); found = true; }
+      if(!found) throw std::invalid_argument("unknown contender " + contender);
+    }
+    double asked = target;
+    const unsigned int runs = ablated ? 1 : std::max(1u, options.calibrate);
+    for(unsigned int run = 0; run < runs; ++run) {
+      output.clear();
+      std::ofstream("/proc/self/clear_refs") << "5";
+      const auto start = std::chrono::steady_clock::now();
+      PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
+                                          .random_seed(options.seed).relaxation_settings(settings)
+                                          .feature_grading(grading).regrading_attempts(remakes));
+      f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      f.peak_mib = peak_memory_mib();
+      f.runs = run + 1;
+      const double V = double(std::distance(vertices(output).begin(), vertices(output).end()));
+      if(std::abs(V - target) <= 0.02 * target) break;
+      asked *= target / std::max(V, 1.0);
+    }
+  }
+  const Figures m = measure(output, input);
+  Figures r = m;
+  r.seconds = f.seconds;
+  r.peak_mib = f.peak_mib;
+  r.runs = f.runs;
+  return r;
+}
+
+struct Row
+{
+  std::string mesh, contender, error;
+  bool ok = false;
+  double input_vertices = 0;
+  Figures f;
+};
+
+static void write_row(const Row& row, int fd)
+{
+  std::ostringstream os;
+  os.precision(17);
+  if(!row.ok) os << "ok 0\nerror " << row.error << "\n";
+  else {
+    const Figures& f = row.f;
+    os << "ok 1\ninput_vertices " << row.input_vertices << "\nvertices " << f.vertices << "\nmin_angle " << f.min_angle
+       << "\nmin_angle_away " << f.min_angle_away << "\nmean_min_angle " << f.mean_min_angle << "\nmax_angle " << f.max_angle
+       << "\nirregular " << f.irregular << "\nrms " << f.rms << "\nhausdorff " << f.hausdorff << "\nself_intersections_away "
+       << f.self_intersections_away << "\ntopology_kept " << f.topology_kept << "\nseconds " << f.seconds << "\npeak_mib "
+       << f.peak_mib << "\nruns " << f.runs << "\n";
+  }
+  const std::string s = os.str();
+  std::size_t done = 0;
+  while(done < s.size()) {
+    const ssize_t n = write(fd, s.data() + done, s.size() - done);
+    if(n <= 0) break;
+    done += std::size_t(n);
+  }
+}
+
+static Row read_row(const std::string& text, int status)
+{
+  Row row;
+  std::map<std::string, double> v = benchmark_support::parse_report(text, row.error);
+  if(v["ok"] != 1) {
+    if(row.error.empty())
+      row.error = WIFSIGNALED(status) ? (WTERMSIG(status) == SIGALRM ? std::string("timeout")
+                                                                      : std::string("killed by signal ") + strsignal(WTERMSIG(status)))
+                                      : "failed";
+    return row;
+  }
+  row.ok = true;
+  row.input_vertices = v["input_vertices"];
+  Figures& f = row.f;
+  f.vertices = v["vertices"]; f.min_angle = v["min_angle"]; f.min_angle_away = v["min_angle_away"]; f.mean_min_angle = v["mean_min_angle"];
+  f.max_angle = v["max_angle"]; f.irregular = v["irregular"]; f.rms = v["rms"]; f.hausdorff = v["hausdorff"];
+  f.self_intersections_away = v["self_intersections_away"]; f.topology_kept = v["topology_kept"]; f.seconds = v["seconds"];
+  f.peak_mib = v["peak_mib"]; f.runs = v["runs"];
+  return row;
+}
+
+struct Task
+{
+  std::string mesh, file, contender;
+};
+
+// runs the tasks, `jobs` children at a time; each child writes its row to a file of its own
+static std::vector<Row> run_all(const std::vector<Task>& tasks, const std::string& scratch)
+{
+  std::vector<Row> rows(tasks.size());
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0, done = 0;
+  auto file_of = [&](std::size_t i) { return scratch + "/row" + std::to_string(i); };
+  while(done < tasks.size()) {
+    while(next < tasks.size() && running.size() < options.jobs) {
+      const std::size_t i = next++;
+      std::cout.flush();
+      std::cerr.flush();
+      const pid_t pid = fork();
+      if(pid == 0) {
+        alarm(options.timeout);
+        Row row;
+        try {
+          Mesh input;
+          PR::read_surface_mesh(tasks[i].file, input);
+          row.input_vertices = double(num_vertices(input));
+          row.f = run_contender(tasks[i].contender, input);
+          row.ok = true;
+        } catch(const std::exception& e) {
+          row.error = e.what();
+        }
+        const int fd = ::open(file_of(i).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if(fd >= 0) { write_row(row, fd); ::close(fd); }
+        _exit(0);
+      }
+      running[pid] = i;
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if(pid <= 0) break;
+    const auto it = running.find(pid);
+    if(it == running.end()) continue;
+    const std::size_t i = it->second;
+    running.erase(it);
+    std::ifstream in(file_of(i));
+    std::stringstream text;
+    text << in.rdbuf();
+    rows[i] = read_row(WIFEXITED(status) ? text.str() : std::string(), status);
+    rows[i].mesh = tasks[i].mesh;
+    rows[i].contender = tasks[i].contender;
+    std::remove(file_of(i).c_str());
+    ++done;
+    std::cerr << "[" << done << "/" << tasks.size() << "] " << tasks[i].contender << " on " << tasks[i].mesh << ": "
+              << (rows[i].ok ? std::to_string(rows[i].f.seconds) + " s" : "FAILED (" + rows[i].error + ")") << "\n";
+  }
+  return rows;
+}
+
+// ---- the floor and the tables -----------------------------------------------------------------
+
+// the reasons a row misses the floor (empty: it holds); `peer`: the peer's row on the same mesh
+static std::vector<std::string> misses(const Row& r, const Row* peer)
+{
+  if(!r.ok) return {"failed: " + r.error};
+  std::vector<std::string> why;
+  char b[128];
+  const Figures& f = r.f;
+  if(f.min_angle_away < 30) { std::snprintf(b, sizeof b, "θmin %.1f°", f.min_angle_away); why.push_back(b); }
+  if(f.mean_min_angle < 52) { std::snprintf(b, sizeof b, "θ̄min %.1f°", f.mean_min_angle); why.push_back(b); }
+  if(f.irregular > 0.25) { std::snprintf(b, sizeof b, "irregular %.1f%%", 100 * f.irregular); why.push_back(b); }
+  const bool peer_far = peer && peer->ok && peer->f.hausdorff > 0.01;
+  if(f.hausdorff > 0.01 && !(peer_far && f.hausdorff <= 0.8 * peer->f.hausdorff)) {
+    std::snprintf(b, sizeof b, "Hausdorff %.2f%%", 100 * f.hausdorff);
+    why.push_back(b);
+  }
+  if(!f.topology_kept) why.push_back("topology changed");
+  if(f.self_intersections_away > 0) { std::snprintf(b, sizeof b, "%.0f new crossings", f.self_intersections_away); why.push_back(b); }
+  return why;
+}
+
+static double quantile(std::vector<double> v, double q)
+{
+  if(v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double at = q * double(v.size() - 1);
+  const std::size_t i = std::size_t(at);
+  return i + 1 < v.size() ? v[i] + (at - double(i)) * (v[i + 1] - v[i]) : v[i];
+}
+
+// the figure of a column, "worse" being the end that the floor cares about
+struct Column
+{
+  const char* name;
+  std::function<double(const Figures&)> get;
+  bool larger_is_better;
+  double scale;
+  int digits;
+};
+
+static const std::vector<Column>& columns()
+{
+  static const std::vector<Column> c = {
+    {"θmin away (°)", [](const Figures& f) { return f.min_angle_away; }, true, 1, 1},
+    {"θ̄min (°)", [](const Figures& f) { return f.mean_min_angle; }, true, 1, 2},
+    {"θmax (°)", [](const Figures& f) { return f.max_angle; }, false, 1, 1},
+    {"irregular (%)", [](const Figures& f) { return f.irregular; }, false, 100, 1},
+    {"RMS (% diag)", [](const Figures& f) { return f.rms; }, false, 100, 4},
+    {"Hausdorff (% diag)", [](const Figures& f) { return f.hausdorff; }, false, 100, 3},
+    {"seconds", [](const Figures& f) { return f.seconds; }, false, 1, 2},
+    {"peak MiB", [](const Figures& f) { return f.peak_mib; }, false, 1, 0},
+  };
+  return c;
+}
+
+// the vertex count an OFF file declares (0 when unreadable)
+static std::size_t declared_vertices(const std::string& file)
+{
+  std::ifstream in(file);
+  std::string token;
+  std::vector<std::string> tokens;
+  std::string line;
+  while(tokens.size() < 4 && std::getline(in, line)) {
+    const auto hash = line.find('#');
+    if(hash != std::string::npos) line.resize(hash);
+    std::istringstream ls(line);
+    while(ls >> token) tokens.push_back(token);
+  }
+  if(tokens.empty() || tokens[0].find("OFF") == std::string::npos) return 0;
+  try { return tokens.size() > 1 ? std::stoul(tokens[1]) : 0; } catch(...) { return 0; }
+}
+
+// the rows of a JSON file this program wrote (one row per line), and its run settings into `o`
+static std::vector<Row> load_rows(std::istream& in, Options& o)
+{
+  std::vector<Row> rows;
+  std::string line;
+  auto field = [](const std::string& l, const std::string& key) -> std::string {
+    const std::string k = "\"" + key + "\": ";
+    const auto at = l.find(k);
+    if(at == std::string::npos) return "";
+    std::size_t b = at + k.size(), e;
+    if(l[b] == '"') { ++b; e = l.find('"', b); }
+    else e = l.find_first_of(",}", b);
+    return l.substr(b, e == std::string::npos ? std::string::npos : e - b);
+  };
+  auto number = [&](const std::string& l, const std::string& key) { const std::string v = field(l, key); return v.empty() ? 0.0 : std::stod(v); };
+  while(std::getline(in, line)) {
+    if(line.find("\"peer_iterations\": ") != std::string::npos) o.peer_iterations = unsigned(number(line, "peer_iterations"));
+    if(line.find("\"peer_sharp_angle\": ") != std::string::npos) o.peer_sharp_angle = number(line, "peer_sharp_angle");
+    if(line.find("\"jobs\": ") != std::string::npos) o.jobs = unsigned(number(line, "jobs"));
+    if(line.find("\"seed\": ") != std::string::npos) o.seed = unsigned(number(line, "seed"));
+    if(line.find("{\"mesh\": ") == std::string::npos) continue;
+    Row r;
+    r.mesh = field(line, "mesh");
+    r.contender = field(line, "contender");
+    r.ok = field(line, "ok") == "true";
+    r.error = field(line, "error");
+    if(r.ok) {
+      Figures& f = r.f;
+      r.input_vertices = number(line, "input_vertices");
+      f.vertices = number(line, "vertices"); f.min_angle_away = number(line, "min_angle_away"); f.min_angle = number(line, "min_angle");
+      f.mean_min_angle = number(line, "mean_min_angle"); f.max_angle = number(line, "max_angle"); f.irregular = number(line, "irregular");
+      f.rms = number(line, "rms"); f.hausdorff = number(line, "hausdorff"); f.self_intersections_away = number(line, "new_crossings");
+      f.topology_kept = field(line, "topology_kept") == "true" ? 1 : 0; f.seconds = number(line, "seconds");
+      f.peak_mib = number(line, "peak_mib"); f.runs = number(line, "runs");
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+int main(int argc, char** argv)
+{
+  std::vector<std::string> meshes;
+  std::size_t min_vertices = 500, max_vertices = 40000;
+  std::vector<std::string> ablated;
+  std::string markdown, json;
+  std::vector<std::string> merge;   // --merge: JSON files of earlier runs, tabled instead of a run
+  for(int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if(i + 1 >= argc) { std::cerr << "corpus_benchmark: " << a << " needs a value\n"; std::exit(2); }
+      return argv[++i];
+    };
+    try {
+      if(a == "--data") options.data = value();
+      else if(a == "--meshes") meshes = split(value());
+      else if(a == "--min-vertices") min_vertices = std::stoul(value());
+      else if(a == "--max-vertices") max_vertices = std::stoul(value());
+      else if(a == "--seed") options.seed = unsigned(std::stoul(value()));
+      else if(a == "--jobs") options.jobs = std::max(1u, unsigned(std::stoul(value())));
+      else if(a == "--timeout") options.timeout = unsigned(std::stoul(value()));
+      else if(a == "--peer-iterations") options.peer_iterations = unsigned(std::stoul(value()));
+      else if(a == "--peer-sharp-angle") options.peer_sharp_angle = std::stod(value());
+      else if(a == "--calibrate") options.calibrate = unsigned(std::stoul(value()));
+      else if(a == "--ablation") {
+        const std::string v = value();
+        if(v == "all") for(const Operator& op : operators()) ablated.push_back(op.name);
+        else ablated = split(v);
+        for(const std::string& name : ablated) {
+          bool known = false;
+          for(const Operator& op : operators()) known = known || op.name == name;
+          if(!known) { std::cerr << "corpus_benchmark: unknown operator " << name << " (see --help)\n"; return 2; }
+        }
+      }
+      else if(a == "--merge") merge = split(value());
+      else if(a == "--markdown") markdown = value();
+      else if(a == "--json") json = value();
+      else if(a == "--help" || a == "-h") {
+        std::cout << "usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices 500] [--max-vertices 40000]\n"
+                     "         [--seed 1] [--jobs 1] [--timeout 900] [--peer-iterations 10] [--peer-sharp-angle 60]\n"
+                     "         [--calibrate 3] [--ablation all|op,op] [--markdown FILE] [--json FILE]\n"
+                     "         [--merge A.json,B.json]\n"
+                     "Remeshes every CGAL data mesh within the vertex range at its own vertex count, ours beside\n"
+                     "CGAL's isotropic_remeshing, judges the floor, and with --ablation reruns ours with each\n"
+                     "step beyond the paper switched off. --merge tables the rows of earlier runs' JSON files\n"
+                     "instead (a row of a later file replaces the same mesh and contender of an earlier one: a\n"
+                     "row run again). The steps:\n";
+        for(const Operator& op : operators()) std::cout << "  " << op.name << ": " << op.what << "\n";
+        return 0;
+      }
+      else { std::cerr << "corpus_benchmark: unknown option " << a << " (see --help)\n"; return 2; }
+    } catch(const std::exception&) {
+      std::cerr << "corpus_benchmark: bad value for " << a << "\n";
+      return 2;
+    }
+  }
+  std::vector<Row> rows;
+  double total = 0;
+  if(!merge.empty()) {
+    for(const std::string& file : merge) {
+      std::ifstream in(file);
+      if(!in) { std::cerr << "corpus_benchmark: cannot read " << file << "\n"; return 1; }
+      for(const Row& r : load_rows(in, options)) {
+        auto same = std::find_if(rows.begin(), rows.end(), [&](const Row& x) { return x.mesh == r.mesh && x.contender == r.contender; });
+        if(same != rows.end()) *same = r;
+        else rows.push_back(r);
+      }
+    }
+    meshes.clear();
+    for(const Row& r : rows) {
+      if(std::find(meshes.begin(), meshes.end(), r.mesh) == meshes.end()) meshes.push_back(r.mesh);
+      if(r.contender.rfind("ours-", 0) == 0 && std::find(ablated.begin(), ablated.end(), r.contender.substr(5)) == ablated.end())
+        ablated.push_back(r.contender.substr(5));
+    }
+  } else {
+    if(meshes.empty()) {
+      std::vector<std::pair<std::size_t, std::string>> found;
+      for(const auto& entry : std::filesystem::directory_iterator(options.data + "/meshes")) {
+        if(entry.path().extension() != ".off") continue;
+        const std::size_t n = declared_vertices(entry.path().string());
+        if(n >= min_vertices && n <= max_vertices) found.push_back({n, entry.path().stem().string()});
+      }
+      std::sort(found.begin(), found.end());
+      for(const auto& f : found) meshes.push_back(f.second);
+    }
+    if(meshes.empty()) { std::cerr << "corpus_benchmark: no mesh in " << options.data << "/meshes\n"; return 1; }
+
+    std::vector<std::string> contenders = {"cgal", "ours"};
+    for(const std::string& op : ablated) contenders.push_back("ours-" + op);
+    std::vector<Task> tasks;
+    for(const std::string& m : meshes)
+      for(const std::string& c : contenders) {
+        const bool is_path = m.find('/') != std::string::npos;
+        tasks.push_back({is_path ? std::filesystem::path(m).stem().string() : m, is_path ? m : options.data + "/meshes/" + m + ".off", c});
+      }
+    char scratch_template[] = "/tmp/corpus_benchmark.XXXXXX";
+    const char* scratch = mkdtemp(scratch_template);
+    if(!scratch) { std::cerr << "corpus_benchmark: no scratch directory\n"; return 1; }
+    const auto start = std::chrono::steady_clock::now();
+    rows = run_all(tasks, scratch);
+    std::filesystem::remove_all(scratch);
+    total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+}
+  auto find = [&](const std::string& mesh, const std::string& contender) -> const Row* {
+    for(const Row& r : rows) if(r.mesh == mesh && r.contender == contender) return &r;
+    return nullptr;
+  };
+  std::ostringstream md;
+  md << "Corpus: " << meshes.size() << " meshes (CGAL's data set, " << min_vertices << "-" << max_vertices
+     << " vertices), each at its own vertex count, seed " << options.seed << ". Peer: CGAL's isotropic_remeshing, "
+     << options.peer_iterations << " iterations, " << (options.peer_sharp_angle > 0 ? "edges sharper than " + fmt(options.peer_sharp_angle, 0) + "° constrained" : "no edge constrained")
+     << ". Time: wall clock of the library call, " << options.jobs << " job(s) at once. Machine: " << machine_description()
+     << (merge.empty() ? ". Whole run: " + fmt(total / 60, 1) + " min.\n\n" : ". Rows merged from " + std::to_string(merge.size()) + " runs.\n\n");
+
+  // per mesh: ours beside the peer
+  md << "| mesh | input V | | V (% of input) | θmin away (°) | θ̄min (°) | θmax (°) | irregular (%) | RMS (% diag) | Hausdorff (% diag) | new crossings | topology kept | seconds | peak MiB | floor |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|---|\n";
+  for(const std::string& m0 : meshes) {
+    const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+    const Row* peer = find(m, "cgal");
+    for(const std::string c : {"ours", "cgal"}) {
+      const Row* r = find(m, c);
+      if(!r) continue;
+      md << "| " << (c == std::string("ours") ? m : "") << " | " << (c == std::string("ours") ? fmt(r->input_vertices, 0) : "") << " | " << (c == std::string("ours") ? "ours" : "CGAL") << " | ";
+      if(!r->ok) { md << "failed: " << r->error << " |||||||||||\n"; continue; }
+      const Figures& f = r->f;
+      const auto why = misses(*r, c == std::string("ours") ? peer : nullptr);
+      std::string verdict = why.empty() ? "holds" : "";
+      for(std::size_t i = 0; i < why.size(); ++i) verdict += (i ? ", " : "") + why[i];
+      md << fmt(f.vertices, 0) << " (" << fmt(100 * f.vertices / std::max(1.0, r->input_vertices), 1) << ") | " << fmt(f.min_angle_away, 1) << " | "
+         << fmt(f.mean_min_angle, 2) << " | " << fmt(f.max_angle, 1) << " | " << fmt(100 * f.irregular, 1) << " | " << fmt(100 * f.rms, 4) << " | "
+         << fmt(100 * f.hausdorff, 3) << " | " << fmt(f.self_intersections_away, 0) << " | " << (f.topology_kept ? "yes" : "no") << " | "
+         << fmt(f.seconds, 2) << " | " << fmt(f.peak_mib, 0) << " | " << verdict << " |\n";
+    }
+  }
+
+  // the summary: floor passes, median and worst per column, time ratio
+  auto summary_of = [&](const std::string& contender, std::ostringstream& os, bool header) {
+    std::vector<std::vector<double>> values(columns().size());
+    std::size_t passes = 0, ran = 0;
+    std::vector<double> ratio;
+    for(const std::string& m : meshes) {
+      const std::string name = m.find('/') != std::string::npos ? std::filesystem::path(m).stem().string() : m;
+      const Row* r = find(name, contender);
+      const Row* peer = find(name, "cgal");
+      if(!r) continue;
+      ++ran;
+      if(misses(*r, contender == "cgal" ? nullptr : peer).empty()) ++passes;
+      if(!r->ok) continue;
+      for(std::size_t c = 0; c < columns().size(); ++c) values[c].push_back(columns()[c].scale * columns()[c].get(r->f));
+      if(peer && peer->ok && peer->f.seconds > 0) ratio.push_back(r->f.seconds / peer->f.seconds);
+    }
+    if(header) {
+      os << "| contender | floor holds | failed |";
+      for(const Column& c : columns()) os << " " << c.name << " median / worst |";
+      os << " time / CGAL's: median / 90th pct. / max |\n|---|---:|---:|";
+      for(std::size_t c = 0; c < columns().size(); ++c) os << "---:|";
+      os << "---:|\n";
+    }
+    os << "| " << contender << " | " << passes << " of " << ran << " | " << (ran - values[0].size()) << " |";
+    for(std::size_t c = 0; c < columns().size(); ++c) {
+      const auto& v = values[c];
+      const double worst = v.empty() ? 0 : (columns()[c].larger_is_better ? *std::min_element(v.begin(), v.end()) : *std::max_element(v.begin(), v.end()));
+      os << " " << fmt(quantile(v, 0.5), columns()[c].digits) << " / " << fmt(worst, columns()[c].digits) << " |";
+    }
+    if(contender == "cgal") os << " 1 |\n";
+    else os << " " << fmt(quantile(ratio, 0.5), 2) << " / " << fmt(quantile(ratio, 0.9), 2) << " / "
+            << fmt(ratio.empty() ? 0 : *std::max_element(ratio.begin(), ratio.end()), 2) << " |\n";
+  };
+  md << "\n### Summary\n\n";
+  std::ostringstream summary;
+  summary_of("ours", summary, true);
+  summary_of("cgal", summary, false);
+  md << summary.str();
+  md << "\nMisses (ours):\n\n";
+  for(const std::string& m0 : meshes) {
+    const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+    const Row* r = find(m, "ours");
+    if(!r) continue;
+    const auto why = misses(*r, find(m, "cgal"));
+    if(why.empty()) continue;
+    md << "- " << m << ": ";
+    for(std::size_t i = 0; i < why.size(); ++i) md << (i ? ", " : "") << why[i];
+    md << "\n";
+  }
+
+  if(!ablated.empty()) {
+    // per operator: its run's summary, and the change from all operators on
+    md << "\n### Ablation: each step beyond the paper off in turn\n\n"
+       << "Each line is the corpus with that step off (and all the others on); the changes are the step's\n"
+       << "worth: Δ floor = passes with it off minus passes with it on (negative: the step wins models);\n"
+       << "the other Δ are of the medians and of the worst case (off minus on); time = total seconds off / on.\n\n"
+       << "| step off | floor holds | Δ floor | Δ θmin away median / worst | Δ θ̄min median / worst | Δ irregular (pts) median / worst | Δ Hausdorff (% diag) median / worst | Δ RMS (% diag) median | time off / on |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    auto stats = [&](const std::string& contender) {
+      std::map<std::string, std::vector<double>> v;
+      std::size_t passes = 0;
+      double seconds = 0;
+      for(const std::string& m0 : meshes) {
+        const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+        const Row* r = find(m, contender);
+        if(!r) continue;
+        if(misses(*r, find(m, "cgal")).empty()) ++passes;
+        if(!r->ok) { v["failed"].push_back(1); continue; }
+        v["away"].push_back(r->f.min_angle_away); v["mean"].push_back(r->f.mean_min_angle);
+        v["irr"].push_back(100 * r->f.irregular); v["haus"].push_back(100 * r->f.hausdorff); v["rms"].push_back(100 * r->f.rms);
+        seconds += r->f.seconds;
+      }
+      v["passes"].push_back(double(passes));
+      v["seconds"].push_back(seconds);
+      return v;
+    };
+    auto on = stats("ours");
+    auto worst = [](const std::vector<double>& v, bool larger_better) {
+      return v.empty() ? 0.0 : larger_better ? *std::min_element(v.begin(), v.end()) : *std::max_element(v.begin(), v.end());
+    };
+    auto delta = [&](std::map<std::string, std::vector<double>>& off, const char* key, bool larger_better, int digits) {
+      return fmt(quantile(off[key], 0.5) - quantile(on[key], 0.5), digits) + " / " + fmt(worst(off[key], larger_better) - worst(on[key], larger_better), digits);
+    };
+    md << "| (none: all on) | " << fmt(on["passes"][0], 0) << " | | | | | | | 1 |\n";
+    for(const std::string& op : ablated) {
+      auto off = stats("ours-" + op);
+      md << "| " << op << " | " << fmt(off["passes"][0], 0) << " | " << fmt(off["passes"][0] - on["passes"][0], 0) << " | "
+         << delta(off, "away", true, 2) << " | " << delta(off, "mean", true, 2) << " | " << delta(off, "irr", false, 2) << " | "
+         << delta(off, "haus", false, 3) << " | " << fmt(quantile(off["rms"], 0.5) - quantile(on["rms"], 0.5), 4) << " | "
+         << fmt(off["seconds"][0] / std::max(1e-9, on["seconds"][0]), 2) << " |\n";
+    }
+  }
+  std::cout << md.str();
+  if(!markdown.empty()) std::ofstream(markdown) << md.str();
+  if(!json.empty()) {
+    std::ofstream js(json);
+    js.precision(10);
+    js << "{\n  \"machine\": \"" << machine_description() << "\",\n  \"seed\": " << options.seed << ",\n  \"peer_iterations\": "
+       << options.peer_iterations << ",\n  \"peer_sharp_angle\": " << options.peer_sharp_angle << ",\n  \"jobs\": " << options.jobs << ",\n  \"rows\": [\n";
+    for(std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      const Figures& f = r.f;
+      js << "    {\"mesh\": \"" << r.mesh << "\", \"contender\": \"" << r.contender << "\", \"ok\": " << (r.ok ? "true" : "false");
+      if(r.ok)
+        js << ", \"input_vertices\": " << r.input_vertices << ", \"vertices\": " << f.vertices << ", \"min_angle_away\": " << f.min_angle_away
+           << ", \"min_angle\": " << f.min_angle << ", \"mean_min_angle\": " << f.mean_min_angle << ", \"max_angle\": " << f.max_angle
+           << ", \"irregular\": " << f.irregular << ", \"rms\": " << f.rms << ", \"hausdorff\": " << f.hausdorff
+           << ", \"new_crossings\": " << f.self_intersections_away << ", \"topology_kept\": " << (f.topology_kept ? "true" : "false")
+           << ", \"seconds\": " << f.seconds << ", \"peak_mib\": " << f.peak_mib << ", \"runs\": " << f.runs;
+      else {
+        std::string e = r.error;
+        std::replace(e.begin(), e.end(), '"', '\'');
+        js << ", \"error\": \"" << e << "\"";
+      }
+      js << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+    }
+    js << "  ]\n}\n";
+  }
+  return 0;
+}

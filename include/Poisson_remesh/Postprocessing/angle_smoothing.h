@@ -1,0 +1,43 @@
+// Poisson_remesh/Postprocessing/angle_smoothing.h
+//
+// (beyond the paper) Angle smoothing. Objective: the smallest angles in each vertex star. Lloyd's
+// centroids are the best positions for the energy of §6.2, not for the angles of a given
+// connectivity: every movable vertex moves (a free one in its tangent plane, then onto the input;
+// a feature vertex along its curve) to raise the sum of its triangles' smallest angles without
+// lowering the smallest of them, by a short pattern search. Constraints: vertices on the input;
+// moves only; a move that makes the mesh cut itself anew is taken back.
+
+#ifndef POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H
+#define POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H
+
+#include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
+#include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/Postprocessing/internal/vertex_angle_search.h>
+
+namespace Poisson_remesh {
+
+namespace Postprocessing {
+
+/// The angle smoothing's settings.
+struct Angle_smoothing_settings
+{
+  /// rounds of smoothing (each followed by Delaunay flips); they stop when a round moves nothing;
+  /// 0 disables
+  unsigned int rounds = 2;
+};
+
+/// One round of angle smoothing of `m` (the vertices for which `is_fixed` holds stay). Returns the
+/// number of vertices moved.
+template <class Context, class Mesh, class IsFeatureEdge, class IsFixed>
+std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, double sliver_angle, double max_deviation,
+                          double optimized_angle, Relaxation_statistics& stats)
+{
+  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, optimized_angle, sliver_angle,
+                                                       max_deviation, stats);
+}
+
+} // namespace Postprocessing
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H

@@ -1,0 +1,216 @@
+// Poisson_remesh/Postprocessing/fidelity_insertion.h
+//
+// (beyond the paper) Fidelity insertions. Objective: the distance to the input. Input points
+// (vertices, edge midpoints, triangle centroids) farther than `max_deviation` (times the input's
+// bounding-box diagonal) from the mesh -- rims and crests finer than the spacing, cut across by the
+// triangles -- are inserted where they are (the nearest triangle split there), at most one per
+// triangle and its neighbours; the other way, a triangle or an edge that far from the input takes
+// the input point nearest to it. At most `max_insertions_share` of the vertex count per pass,
+// farthest first. Constraints: the new vertices are on the input; an insertion that would make the
+// mesh cut itself anew is taken back (and tried as an edge split instead); no topology change.
+
+#ifndef POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
+#define POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
+
+#include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
+#include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <tuple>
+#include <vector>
+
+namespace Poisson_remesh {
+
+namespace Postprocessing {
+
+/// The fidelity insertions' settings.
+struct Fidelity_settings
+{
+  /// the tolerance, times the input's bounding-box diagonal; 0 disables the insertions (named
+  /// parameter `fidelity_tolerance`)
+  double max_deviation = 0.008;
+  /// at most this share of the vertex count is inserted in one pass, and as many far edges split (a
+  /// mesh much too coarse for its input everywhere is not mended by pinned vertices)
+  double max_insertions_share = 0.01;
+  /// one more pass after the angle optimization, whose moves may cut a crest again
+  bool final_pass = true;
+};
+
+/// One pass of fidelity insertions in `m`; `new_vertex(v, false)` is told each new vertex, which is
+/// also added to `added` (kept sorted: the caller pins these vertices). Returns the number of
+/// vertices inserted.
+template <class Context, class Mesh, class IsFeatureEdge, class NewVertex>
+std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Fidelity_settings& s,
+                                    Relaxation_statistics& stats, std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added)
+{
+  typedef typename Context::Point_3 Point_3;
+  typedef typename Context::Vector_3 Vector_3;
+  typedef typename Context::Geom_traits GeomTraits;
+  typedef typename Context::Input_mesh InputMesh;
+  typedef boost::graph_traits<Mesh> GT;
+  typedef typename GT::face_descriptor face_descriptor;
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Primitive>> Tree;
+  auto vpm = get(CGAL::vertex_point, m);
+  auto in_vpm = get(CGAL::vertex_point, ctx.input());
+  const double tol = s.max_deviation * ctx.diagonal();
+  if(!(tol > 0) || faces(m).empty()) return 0;
+  Tree tree(faces(m).first, faces(m).second, m);
+  tree.accelerate_distance_queries();
+  // the input's vertices, edge midpoints and face centroids (all on the input: the distance
+  // from the input to the mesh peaks inside the input's triangles as often as at its vertices)
+  std::vector<std::pair<double, Point_3>> far;
+  auto check = [&](const Point_3& p) {
+    const double d2 = CGAL::to_double(tree.squared_distance(p));
+    if(d2 > tol * tol) far.push_back({d2, p});
+    return d2;
+  };
+  // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
+  // of its vertices is not queried)
+  auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), ctx.input());
+  for(auto v : vertices(ctx.input())) {
+    put(vertex_distance, v, std::numeric_limits<double>::infinity());
+    if(halfedge(v, ctx.input()) != boost::graph_traits<InputMesh>::null_halfedge()) put(vertex_distance, v, std::sqrt(check(get(in_vpm, v))));
+  }
+  auto near_by_way_of = [&](const Point_3& x, auto v) {
+    return get(vertex_distance, v) + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, get(in_vpm, v)))) <= tol;
+  };
+  for(auto e : edges(ctx.input())) {
+    const auto a = source(e, ctx.input()), b = target(e, ctx.input());
+    const Point_3 x = CGAL::midpoint(get(in_vpm, a), get(in_vpm, b));
+    if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) check(x);
+  }
+  for(auto f : faces(ctx.input())) {
+    const auto h = halfedge(f, ctx.input());
+    const auto a = source(h, ctx.input()), b = target(h, ctx.input()), c = target(next(h, ctx.input()), ctx.input());
+    const Point_3 x = CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c));
+    if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) check(x);
+  }
+  // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
+  // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
+  // (the input point nearest c, and its squared distance to c)
+  auto nearest_on_input = [&](const Point_3& c) {
+    const Point_3 p = ctx.project_on_surface(c);
+    return std::make_pair(CGAL::to_double(CGAL::squared_distance(c, p)), p);
+  };
+  for(face_descriptor f : faces(m)) {
+    const auto h = halfedge(f, m);
+    const auto [d2, p] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))));
+    // (not when that input point is near the mesh elsewhere: the other side of a thin part)
+    if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
+  }
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor>> far_edges;
+  for(auto e : edges(m)) {
+    const halfedge_descriptor h = halfedge(e, m);
+    if(is_border_edge(h, m) || is_feature(e)) continue;
+    const auto [d2, p] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))));
+    if(d2 > tol * tol) far_edges.push_back({d2, p, source(h, m), target(h, m)});
+  }
+  if(far.empty() && far_edges.empty()) return 0;
+  std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const auto before = Poisson_remesh::internal::intersecting_pairs(m);   // intersections there already
+  if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
+  std::set<face_descriptor> touched;
+  std::vector<vertex_descriptor> mine;
+  std::size_t done = 0;
+  const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_insertions_share * double(num_vertices(m))));
+  for(const auto& fp : far) {
+    if(mine.size() >= cap) break;
+    const face_descriptor f = tree.closest_point_and_primitive(fp.second).second;
+    if(touched.count(f)) continue;
+    // the triangle and its neighbours take one new vertex at most
+    touched.insert(f);
+    for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
+      if(!is_border(opposite(h, m), m)) touched.insert(face(opposite(h, m), m));
+    const auto hnew = CGAL::Euler::add_center_vertex(halfedge(f, m), m);
+    const auto v = target(hnew, m);
+    put(vpm, v, fp.second);
+    mine.push_back(v);
+  }
+  // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
+  std::sort(mine.begin(), mine.end());
+  std::vector<vertex_descriptor> undo;
+  ctx.for_vertices_of_new_intersections(m, before, Poisson_remesh::internal::faces_around(m, mine), [&](vertex_descriptor x) {
+    if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
+  });
+  std::sort(undo.begin(), undo.end());
+  undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
+  std::vector<std::pair<Point_3, typename GT::halfedge_descriptor>> retry;   // (a halfedge of the triangle it was in)
+  for(vertex_descriptor v : undo) {
+    const Point_3 p = get(vpm, v);
+    retry.push_back({p, CGAL::Euler::remove_center_vertex(halfedge(v, m), m)});
+  }
+  for(vertex_descriptor v : mine)
+    if(!std::binary_search(undo.begin(), undo.end(), v)) {
+      new_vertex(v, false);
+      added.push_back(v);
+      ++done;
+    }
+  // a split of an edge of `order` at p (the first that works) is kept if it makes the mesh cut
+  // itself nowhere new and turns no triangle by more than acos(min_cos) from both old ones
+  auto try_split = [&](const Point_3& p, const std::vector<std::pair<double, halfedge_descriptor>>& order, double min_cos) {
+    for(const auto& candidate : order) {
+      const auto x = candidate.second;
+      const vertex_descriptor a = source(x, m), b = target(x, m);
+      const Vector_3 n1 = ctx.normal(get(vpm, a), get(vpm, b), get(vpm, target(next(x, m), m)));
+      const Vector_3 n2 = ctx.normal(get(vpm, b), get(vpm, a), get(vpm, target(next(opposite(x, m), m), m)));
+      const vertex_descriptor v = ctx.insert_vertex_on_edge(x, p, m);
+      bool ok = true;
+      for(auto h : CGAL::halfedges_around_target(v, m)) {
+        const Vector_3 n = ctx.normal(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m)));
+        ok = ok && (ctx.cos_between(n, n1) >= min_cos || ctx.cos_between(n, n2) >= min_cos);
+      }
+      // (every crossing of a triangle at v is new; `before` is not used here: its face indices
+      // may have been recycled by the removals above)
+      if(ok)
+        ctx.for_vertices_of_new_intersections(m, decltype(before)(), Poisson_remesh::internal::faces_around(m, std::vector<vertex_descriptor>(1, v)),
+                                          [&](vertex_descriptor y) { if(y == v) ok = false; });
+      if(!ok) { ctx.remove_vertex_on_edge(v, a, b, m); continue; }
+      new_vertex(v, false);
+      added.push_back(v);
+      ++done;
+      return true;
+    }
+    return false;
+  };
+  // one taken back splits an edge of that triangle instead, the nearest edge first (not a
+  // feature edge: it would lose its feature), turning a triangle by 75 degrees at most: it
+  // follows the input there (a horn thinner than the spacing turns that much)
+  for(const auto& [p, g] : retry) {
+    std::vector<std::pair<double, halfedge_descriptor>> order;
+    for(auto x : CGAL::halfedges_around_face(g, m)) {
+      if(is_border(opposite(x, m), m) || is_feature(edge(x, m))) continue;
+      order.push_back({CGAL::to_double(CGAL::squared_distance(p, typename GeomTraits::Segment_3(get(vpm, source(x, m)), get(vpm, target(x, m))))), x});
+    }
+    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    try_split(p, order, 0.26);
+  }
+  // the edges far from the input (those still in the mesh), each triangle split once at most,
+  // turning a triangle by 60 degrees at most (the limit of ctx.folds())
+  std::sort(far_edges.begin(), far_edges.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
+  std::set<vertex_descriptor> split_near;
+  std::size_t edge_splits = 0;
+  for(const auto& [d2, p, a, b] : far_edges) {
+    if(edge_splits >= cap) break;
+    const auto [h, exists] = halfedge(a, b, m);
+    if(!exists || split_near.count(a) || split_near.count(b)) continue;
+    for(auto x : {h, opposite(h, m)})
+      for(vertex_descriptor y : CGAL::vertices_around_face(x, m)) split_near.insert(y);
+    if(try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5)) ++edge_splits;
+  }
+  std::sort(added.begin(), added.end());   // (the caller looks its pinned vertices up)
+  stats.fidelity_insertions += done;
+  return done;
+}
+
+} // namespace Postprocessing
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H

@@ -1,0 +1,207 @@
+// Poisson_remesh/Postprocessing/internal/vertex_angle_search.h
+//
+// The pattern search of the angle smoothing and the angle optimization (internal): vertices move
+// on the input (feature vertices along their curves) to raise the angles of their triangles.
+
+#ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_VERTEX_ANGLE_SEARCH_H
+#define POISSON_REMESH_POSTPROCESSING_INTERNAL_VERTEX_ANGLE_SEARCH_H
+
+#include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
+#include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <algorithm>
+#include <map>
+#include <set>
+#include <vector>
+
+namespace Poisson_remesh {
+
+namespace Postprocessing {
+
+/// What the vertex search raises.
+enum class Angle_goal { smallest, sum_of_smallest };
+
+namespace internal {
+
+/// Moves vertices by a pattern search on the input (feature vertices along their curves): with
+/// Angle_goal::smallest, the movable vertices of the triangles sharper than `optimized_angle`
+/// (degrees), to raise the smallest angle around them; with Angle_goal::sum_of_smallest, every
+/// movable vertex, to raise the sum of its triangles' smallest angles without lowering the smallest
+/// (free vertices search in their tangent plane and are projected once: it is a smoothing of
+/// vertices already well placed, with a shorter search). With `pinned_only` (Angle_goal::smallest),
+/// only the vertices of the fidelity insertions (fixed for is_corner) at a triangle sharper than
+/// `sliver_angle` move, by a quarter of the fidelity tolerance (`max_deviation` times the diagonal)
+/// at most from where they were put, `pin_anchor(x)` (nullptr for the others): they still hold the
+/// mesh near the input. A move that makes the mesh cut itself anew is taken back. Returns the
+/// number of vertices moved.
+template <class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
+std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
+                                double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
+                                PinAnchor pin_anchor, bool pinned_only)
+{
+  typedef typename Context::Point_3 Point_3;
+  typedef typename Context::Vector_3 Vector_3;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  auto vpm = get(CGAL::vertex_point, m);
+  const bool smoothing = goal == Angle_goal::sum_of_smallest;
+  const double sharp = optimized_angle * CGAL_PI / 180;   // (Angle_goal::smallest only)
+  std::vector<vertex_descriptor> todo;
+  // a feature vertex with one feature edge (the output's edge along its curve is a chord too far
+  // from the curve to count) slides along the curve too when it is at a sliver
+  const double pin_reach = 0.25 * max_deviation * ctx.diagonal(), sliver = sliver_angle * CGAL_PI / 180;
+  auto movability = [&](vertex_descriptor x) {
+    if(pinned_only)
+      return pin_reach > 0 && pin_anchor(x) != nullptr && ctx.feature_degree(x, m, is_feature) == 0 && !is_border(x, m) &&
+             ctx.smallest_angles_around(x, m, get(vpm, x)).first < sliver ? 0 : 2;
+    const int c = ctx.constraint(x, m, is_feature, is_corner);
+    return !smoothing && c == 2 && !is_corner(x) && ctx.feature_degree(x, m, is_feature) == 1 ? 1 : c;
+  };
+  if(smoothing) {
+    for(vertex_descriptor x : vertices(m)) if(movability(x) < 2) todo.push_back(x);
+  } else {
+    for(auto f : faces(m)) {
+      const auto h = halfedge(f, m);
+      const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
+      if(ctx.min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sharp) continue;
+      for(vertex_descriptor x : v) if(movability(x) < 2) todo.push_back(x);
+    }
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  }
+  // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
+  // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
+  // degrees over its angle sum (a third of the sum counts as 30), so that the neighbours raise
+  // their own angles (a cone tip of 83 degrees: its three triangles at best 27.7 degrees there,
+  // the other two angles of each then depend on the neighbours)
+  std::map<vertex_descriptor, double> tips;
+  std::set<vertex_descriptor> checked;
+  for(vertex_descriptor x : todo)
+    for(auto h : CGAL::halfedges_around_target(x, m)) {
+      const vertex_descriptor t = source(h, m);
+      if(!is_corner(t) || !checked.insert(t).second || is_border(t, m) || ctx.feature_degree(t, m, is_feature) != 0) continue;
+      double sum = 0;
+      for(auto g : CGAL::halfedges_around_target(t, m))
+        sum += ctx.angle(get(vpm, source(g, m)), get(vpm, t), get(vpm, target(next(g, m), m)));
+      if(sum > 0 && sum < CGAL_PI / 2) tips[t] = CGAL_PI / 2 / sum;
+    }
+  auto tip_scale = [&](vertex_descriptor x) {
+    if(tips.empty()) return 1.0;
+    const auto it = tips.find(x);
+    return it == tips.end() ? 1.0 : it->second;
+  };
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
+  if(!todo.empty()) {
+    // (only the faces around `todo` can move: around a few slivers, their neighbourhood is
+    // enough; the smoothing moves every vertex)
+    before = smoothing ? Poisson_remesh::internal::intersecting_pairs(m) : Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, todo));
+    // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
+    if(before.size() > num_faces(m)) return 0;
+  }
+  std::size_t moved = 0;
+  std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
+  for(vertex_descriptor v : todo) {
+    const int c = movability(v);
+    const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
+    const Point_3 start = get(vpm, v);
+    Point_3 p = start;
+    const double floor = ctx.smallest_angles_around(v, m, p, tip_scale).first;
+    auto objective = [&](const Point_3& q) {
+      const auto [smallest, sum] = ctx.smallest_angles_around(v, m, q, tip_scale);
+      if(!smoothing || smallest < 0) return smallest;
+      return smallest < floor ? -1.0 : sum;
+    };
+    double best = objective(p);
+    if(best < 0) continue;
+    // directions: the tangent plane (8 of them), or along the feature curve (2)
+    std::vector<Vector_3> dirs;
+    double mean = 0;
+    std::size_t n = 0;
+    Vector_3 nv(0, 0, 0);
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      const Point_3& a = get(vpm, source(h, m));
+      mean += std::sqrt(CGAL::to_double(CGAL::squared_distance(a, p)));
+      ++n;
+      if(c == 1 && (is_feature(edge(h, m)) || is_border(edge(h, m), m))) {
+        const Vector_3 d = a - p;
+        dirs.push_back(d / std::sqrt(CGAL::to_double(d.squared_length())));
+      }
+      if(!is_border(h, m)) nv = nv + ctx.normal(a, p, get(vpm, target(next(h, m), m)));
+    }
+    if(n == 0) continue;
+    mean /= double(n);
+    // (one feature edge: the vertex may be the loose end of a curve at a tip, it moves little)
+    const bool loose_end = c == 1 && dirs.size() == 1;
+    if(loose_end) dirs.push_back(-dirs[0]);
+    if(c == 0) {
+      const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
+      if(!(ln > 0)) continue;
+      const Vector_3 nn = nv / ln;
+      Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
+      if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
+      u = u / std::sqrt(CGAL::to_double(u.squared_length()));
+      const Vector_3 w = CGAL::cross_product(nn, u);
+      for(int k = 0; k < 8; ++k) dirs.push_back(std::cos(k * CGAL_PI / 4) * u + std::sin(k * CGAL_PI / 4) * w);
+    }
+    if(dirs.empty()) continue;
+    // (at most 40 steps: gains that never stop, however small -- a flat double-sided sheet
+    // found by fuzzing -- kept the step from shrinking)
+    const bool in_plane = smoothing && c == 0;
+    double step = (smoothing ? 0.1 : 0.2) * mean;
+    for(int iteration = 0; iteration < (smoothing ? 10 : 40) && step > 0.01 * mean; ++iteration) {
+      Point_3 best_q = p;
+      double best_here = best;
+      for(const Vector_3& d : dirs) {
+        const Point_3 t = p + step * d;
+        const Point_3 q = in_plane ? t : c == 0 ? ctx.project_on_surface(t, p) : ctx.project_on_features(t, p);
+        if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+        if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
+        if(anchor != nullptr && CGAL::to_double(CGAL::squared_distance(q, *anchor)) > pin_reach * pin_reach) continue;
+        const double a = objective(q);
+        if(a > best_here + 1e-9) { best_here = a; best_q = q; }
+      }
+      if(best_here > best + 1e-6) { best = best_here; p = best_q; }
+      else step *= 0.5;
+    }
+    if(in_plane && p != start) {   // onto the input; kept if still better there
+      p = ctx.project_on_surface(p, start);
+      if(!(objective(p) > objective(start))) p = start;
+    }
+    if(p != start) { put(vpm, v, p); from.push_back({v, start}); ++moved; }
+  }
+  // a move may not make the mesh cut itself (thin parts): the moved vertices of triangles
+  // that intersect anew go back, until no new intersection is left
+  if(moved > 0) {
+    std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<vertex_descriptor> movers;
+    for(const auto& x : from) movers.push_back(x.first);
+    const auto changed = Poisson_remesh::internal::faces_around(m, movers);
+    for(int round = 0; round < 8; ++round) {
+      std::size_t back = 0;
+      ctx.for_vertices_of_new_intersections(m, before, changed, [&](vertex_descriptor x) {
+        auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
+        if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
+      });
+      if(back == 0) break;
+      moved -= std::min(moved, back);
+      stats.refused_moves += back;
+    }
+  }
+  stats.angle_moves += moved;
+  return moved;
+}
+
+/// The same without pinned vertices.
+template <class Context, class Mesh, class IsFeatureEdge, class IsCorner>
+std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
+                                double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats)
+{
+  return vertex_angle_search(ctx, m, is_feature, is_corner, goal, optimized_angle, sliver_angle, max_deviation, stats,
+                             [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false);
+}
+
+} // namespace internal
+} // namespace Postprocessing
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POSTPROCESSING_INTERNAL_VERTEX_ANGLE_SEARCH_H

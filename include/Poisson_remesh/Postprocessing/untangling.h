@@ -1,0 +1,230 @@
+// Poisson_remesh/Postprocessing/untangling.h
+//
+// (beyond the paper) Untangling. Objective: the number of crossing face pairs. The tessellation
+// and the Lloyd passes do not check for crossings (bumps finer than the spacing), and the later
+// steps only refuse new ones, so crossings made early stay. Each vertex of a face that still crosses
+// another tries a few positions towards its neighbours (on the input), each edge of such a face a
+// flip, and a free vertex shared by two crossing faces a collapse into a neighbour; a change is kept
+// when fewer crossing pairs remain and the smallest angle around stays over `min_angle` (or what it
+// was), `collapse_min_angle` for a collapse. Constraints: vertices on the input; the link
+// condition for collapses (no topology change).
+
+#ifndef POISSON_REMESH_POSTPROCESSING_UNTANGLING_H
+#define POISSON_REMESH_POSTPROCESSING_UNTANGLING_H
+
+#include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
+#include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+#include <vector>
+
+namespace Poisson_remesh {
+
+namespace Postprocessing {
+
+/// The untangling's settings.
+struct Untangling_settings
+{
+  /// rounds of untangling at the very end; 0 disables
+  unsigned int rounds = 3;
+  /// the smallest angle the triangles of a move or flip keep, or what it was if smaller (degrees)
+  double min_angle = 30;
+  /// the smallest angle the triangles of a collapse keep (degrees; 0: no collapse)
+  double collapse_min_angle = 15;
+};
+
+/// One round of untangling of `m`; with `collapses`, collapses too (counted there). Returns the
+/// number of changes made.
+template <class Context, class Mesh, class IsFeatureEdge, class IsCorner>
+std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, const Untangling_settings& s,
+                     Relaxation_statistics& stats, std::size_t* collapses = nullptr)
+{
+  typedef typename Context::Point_3 Point_3;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  auto pairs = Poisson_remesh::internal::intersecting_pairs(m);
+  if(pairs.empty() || pairs.size() > num_faces(m)) return 0;
+  auto vpm = get(CGAL::vertex_point, m);
+  // the faces' boxes, kept up to date by `refresh` after each change (taken back or not); the
+  // crossing pairs that involve one of the faces of `fs` (sorted) are looked for among the
+  // faces whose boxes meet theirs (intersecting_pairs_near would box the whole mesh each time)
+  auto box = get(CGAL::dynamic_face_property_t<CGAL::Bbox_3>(), m);
+  auto box_of = [&](face_descriptor f) {
+    CGAL::Bbox_3 b;
+    for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, x).bbox();
+    return b;
+  };
+  for(face_descriptor f : faces(m)) put(box, f, box_of(f));
+  auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) put(box, f, box_of(f)); };
+  std::vector<face_descriptor> near;
+  auto crossings = [&](const std::vector<face_descriptor>& fs) {
+    refresh(fs);
+    near = fs;
+    for(face_descriptor g : faces(m))
+      for(face_descriptor f : fs)
+        if(g != f && CGAL::do_overlap(get(box, g), get(box, f))) { near.push_back(g); break; }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    std::size_t n = 0;
+    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs(m, near))
+      if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+    return n;
+  };
+  const double floor = s.min_angle * CGAL_PI / 180;
+  std::size_t done = 0;
+  std::vector<vertex_descriptor> vs;
+  for(const auto& fp : pairs)
+    for(face_descriptor f : {fp.first, fp.second})
+      for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) vs.push_back(x);
+  std::sort(vs.begin(), vs.end());
+  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  // moves of the free vertices
+  for(vertex_descriptor v : vs) {
+    const int c_v = ctx.constraint(v, m, is_feature, is_fixed);   // 0 free, 1 on a curve, 2 fixed
+    if(c_v == 2) continue;   // (a border vertex is on a curve: border edges count as features)
+    const std::vector<face_descriptor> fs = Poisson_remesh::internal::faces_around(m, std::array<vertex_descriptor, 1>{{v}});
+    const std::size_t before = crossings(fs);
+    if(before == 0) continue;
+    const Point_3 start = get(vpm, v);
+    // (a triangle of zero area around v makes the angles -1: then no triangle may get worse than 0)
+    const double limit = std::min(std::max(ctx.smallest_angles_around(v, m, start).first, 0.0), floor);
+    double x = 0, y = 0, z = 0, mean = 0;
+    std::size_t n = 0;
+    for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) {
+      const Point_3& q = get(vpm, w);
+      x += CGAL::to_double(q.x()); y += CGAL::to_double(q.y()); z += CGAL::to_double(q.z());
+      mean += std::sqrt(CGAL::to_double(CGAL::squared_distance(q, start)));
+      ++n;
+    }
+    if(n == 0) continue;
+    mean /= double(n);
+    const Point_3 c(x / double(n), y / double(n), z / double(n));
+    // toward the centroid, and a third of the way toward each neighbour: the one that leaves
+    // the fewest crossings
+    std::vector<Point_3> tries;
+    if(c_v == 0) tries = {c, CGAL::midpoint(start, c)};
+    for(auto g : CGAL::halfedges_around_target(v, m))   // (a vertex on a curve slides along it)
+      if(c_v == 0 || is_feature(edge(g, m)) || is_border(edge(g, m), m)) tries.push_back(start + (get(vpm, source(g, m)) - start) / 3.0);
+    std::size_t best = before;
+    Point_3 best_q = start;
+    for(const Point_3& t : tries) {
+      const Point_3 q = c_v == 0 ? ctx.project_on_surface(t, start) : ctx.project_on_features(t, start);
+      if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+      const double new_min = ctx.smallest_angles_around(v, m, q).first;
+      if(new_min < 0 || new_min < limit) continue;
+      put(vpm, v, q);
+      const std::size_t after = crossings(fs);
+      if(after < best) { best = after; best_q = q; }
+      put(vpm, v, start);
+      refresh(fs);
+      if(best == 0) break;
+    }
+    if(best < before) {
+      put(vpm, v, best_q);
+      refresh(fs);
+      ++done;
+      ++stats.untangle_changes;
+    }
+  }
+  // flips of the edges of the faces still crossing
+  pairs = Poisson_remesh::internal::intersecting_pairs(m);
+  const double cos_max = std::cos(60 * CGAL_PI / 180);
+  std::vector<typename boost::graph_traits<Mesh>::edge_descriptor> es;
+  for(const auto& fp : pairs)
+    for(face_descriptor f : {fp.first, fp.second})
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) es.push_back(edge(h, m));
+  std::sort(es.begin(), es.end());
+  es.erase(std::unique(es.begin(), es.end()), es.end());
+  for(auto e : es) {
+    if(is_feature(e) || is_border(e, m)) continue;
+    const auto h = halfedge(e, m);
+    const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+    if(degree(p, m) <= 3 || degree(q, m) <= 3 || r == t || halfedge(r, t, m).second) continue;
+    if(!ctx.flip_is_safe(h, m, cos_max)) continue;
+    std::vector<face_descriptor> fs = {face(h, m), face(opposite(h, m), m)};
+    std::sort(fs.begin(), fs.end());
+    const std::size_t before = crossings(fs);
+    if(before == 0) continue;
+    if(ctx.min_angle_after_flip(h, m) < std::min(ctx.min_angle_of_faces(h, m), floor)) continue;
+    CGAL::Euler::flip_edge(h, m);
+    std::vector<face_descriptor> gs = {face(h, m), face(opposite(h, m), m)};
+    std::sort(gs.begin(), gs.end());
+    if(crossings(gs) < before) { ++done; ++stats.untangle_changes; }
+    else {
+      CGAL::Euler::flip_edge(h, m);
+      std::vector<face_descriptor> back = {face(h, m), face(opposite(h, m), m)};
+      refresh(back);
+    }
+  }
+  // (with `collapses`) a free vertex shared by two faces still crossing -- its fan folded over on
+  // a part thinner than the triangles, a claw -- goes into a free neighbour, which keeps
+  // its place, when the triangles around it cross fewer others and keep untangle_collapse_min_angle;
+  // tried on a copy of the mesh; the caller optimizes the angles there again
+  if(collapses != nullptr) {
+    typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+    pairs = Poisson_remesh::internal::intersecting_pairs(m);
+    std::vector<vertex_descriptor> shared;
+    for(const auto& fp : pairs)
+      for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(fp.first, m), m))
+        for(vertex_descriptor y : CGAL::vertices_around_face(halfedge(fp.second, m), m))
+          if(x == y) shared.push_back(x);
+    std::sort(shared.begin(), shared.end());
+    shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+    const double collapse_floor = s.collapse_min_angle * CGAL_PI / 180;
+    std::set<vertex_descriptor> gone;
+    // (each trial copies the whole mesh: at most 64 per pass, a large input folded in many
+    // places would spend its time there)
+    std::size_t trials = 0;
+    const std::size_t max_trials = 64;
+    // the crossings of the faces around the vertices `around` (in m, or in a copy of it)
+    auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around) {
+      const auto fs = Poisson_remesh::internal::faces_around(g, around);
+      std::size_t n = 0;
+      for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(g, fs))
+        if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+      return n;
+    };
+    for(vertex_descriptor x : shared) {
+      if(gone.count(x) || ctx.constraint(x, m, is_feature, is_fixed) != 0) continue;
+      halfedge_descriptor best_h = boost::graph_traits<Mesh>::null_halfedge();
+      std::size_t best_gain = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(x, m)) {   // h: y -> x
+        const vertex_descriptor y = source(h, m);
+        if(gone.count(y) || ctx.constraint(y, m, is_feature, is_fixed) != 0 || !CGAL::Euler::does_satisfy_link_condition(edge(h, m), m)) continue;
+        std::vector<vertex_descriptor> xy = {x, y};
+        std::sort(xy.begin(), xy.end());
+        const std::size_t before = crossings_near(m, xy);
+        if(before == 0 || trials >= max_trials) continue;
+        ++trials;
+        Mesh copy;
+        std::map<halfedge_descriptor, typename boost::graph_traits<Mesh>::halfedge_descriptor> h2h;
+        CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
+        const Point_3 at = get(vpm, y);
+        const auto z = CGAL::Euler::collapse_edge(edge(h2h[h], copy), copy);
+        put(get(CGAL::vertex_point, copy), z, at);
+        if(!(ctx.smallest_angles_around(z, copy, at).first >= collapse_floor)) continue;
+        const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z));
+        if(after < before && before - after > best_gain) { best_gain = before - after; best_h = h; }
+      }
+      if(best_h == boost::graph_traits<Mesh>::null_halfedge()) continue;
+      const vertex_descriptor y = source(best_h, m);
+      const Point_3 at = get(vpm, y);
+      const vertex_descriptor z = CGAL::Euler::collapse_edge(edge(best_h, m), m);
+      put(vpm, z, at);
+      gone.insert(z == x ? y : x);
+      ++done;
+      ++*collapses;
+      ++stats.untangle_changes;
+    }
+  }
+  return done;
+}
+
+} // namespace Postprocessing
+
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POSTPROCESSING_UNTANGLING_H

@@ -1,0 +1,368 @@
+// Poisson_remesh/Relaxation/internal/Relaxation_context.h
+//
+// What the relaxation's steps share (internal): the input surface and its features, the
+// projections onto them (CGAL AABB tree; internal/feature_curves.h), the bounding-box diagonal,
+// the input's own crossings, and the small geometric and combinatorial predicates the steps use
+// (angles, flip guards, a vertex's constraint, self-intersection checks scoped to the changed
+// faces). Every step of Relaxation/ and Postprocessing/ takes a `Relaxation_context` as its first
+// argument; a `Lloyd_relaxer` owns one.
+
+#ifndef POISSON_REMESH_RELAXATION_INTERNAL_RELAXATION_CONTEXT_H
+#define POISSON_REMESH_RELAXATION_INTERNAL_RELAXATION_CONTEXT_H
+
+#include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/internal/feature_curves.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <utility>
+#include <vector>
+
+namespace Poisson_remesh {
+
+namespace internal {
+
+template <class Mesh>
+using Face_pairs = std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>;
+
+// the intersecting face pairs among the faces of `range` (all of m's by default), each (smaller,
+// larger), sorted; the search stops past twice the face count (a mesh that cuts itself
+// everywhere: folded input)
+template <class Mesh, class FaceRange>
+Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
+{
+  Face_pairs<Mesh> pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs),
+                                                    CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+  for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+template <class Mesh>
+Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m, faces(m)); }
+
+// the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
+// meets the box of one: all the pairs that can differ from an earlier check when only the faces
+// of `changed` moved or are new. A box search of the changed faces against all faces, then
+// CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round was a tenth of
+// the remesh's time); when most faces changed, the whole mesh's pairs (a superset: the box
+// search would only repeat self_intersections' own).
+template <class Mesh, class FaceRange>
+Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
+{
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
+  auto vpm = get(CGAL::vertex_point, m);
+  auto box_of = [&](face_descriptor f) {
+    const auto h = halfedge(f, m);
+    return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
+  };
+  const auto n = std::size_t(std::distance(std::begin(changed), std::end(changed)));
+  if(n == 0) return {};
+  if(2 * n > num_faces(m)) return intersecting_pairs(m);
+  std::vector<Box> mine, all;
+  for(face_descriptor f : changed) mine.push_back(box_of(f));
+  all.reserve(num_faces(m));
+  for(face_descriptor f : faces(m)) all.push_back(box_of(f));
+  // (each changed face meets its own box in `all`, so it is in `near` too)
+  std::vector<face_descriptor> near;
+  CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
+                           [&](const Box&, const Box& b) { near.push_back(b.info()); });
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  return intersecting_pairs(m, near);
+}
+
+// the faces around the vertices of a range, sorted, each once
+template <class Mesh, class VertexRange>
+std::vector<typename boost::graph_traits<Mesh>::face_descriptor> faces_around(const Mesh& m, const VertexRange& vs)
+{
+  std::vector<typename boost::graph_traits<Mesh>::face_descriptor> out;
+  for(auto v : vs)
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, m), m))
+      if(!is_border(h, m)) out.push_back(face(h, m));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+} // namespace internal
+
+namespace internal {
+
+/// The input surface, its features and the shared predicates of the relaxation's steps.
+/// `GeomTraits`: the kernel of the input's points.
+template <class InputMesh, class GeomTraits>
+class Relaxation_context
+{
+public:
+  typedef InputMesh Input_mesh;
+  typedef GeomTraits Geom_traits;
+  typedef typename GeomTraits::Point_3 Point_3;
+  typedef typename GeomTraits::Vector_3 Vector_3;
+
+private:
+  typedef CGAL::AABB_face_graph_triangle_primitive<InputMesh> Face_primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Face_primitive>> Face_tree;
+
+public:
+  /// `features`: the input's features (their edges are where feature vertices may slide).
+  Relaxation_context(const InputMesh& input, const Feature_set<InputMesh>& features)
+    : input_(input), faces_(faces(input).first, faces(input).second, input), curves_(input, features)
+  {
+    faces_.accelerate_distance_queries();
+    const auto& pts = get(CGAL::vertex_point, input);
+    if(!vertices(input).empty()) {
+      CGAL::Bbox_3 box;
+      for(auto v : vertices(input)) box += get(pts, v).bbox();
+      diagonal_ = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+    }
+  }
+
+  /// the input mesh
+  const InputMesh& input() const { return input_; }
+  /// the input's bounding-box diagonal
+  double diagonal() const { return diagonal_; }
+
+  /// the point of the input surface closest to `p`
+  Point_3 project_on_surface(const Point_3& p) const { return faces_.closest_point(p); }
+  /// the point of the input's feature edges closest to `p` (of the surface, without features)
+  Point_3 project_on_features(const Point_3& p) const { return curves_.empty() ? project_on_surface(p) : curves_.closest_point(p); }
+  /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
+  /// project_on_features), near p: the search starts from it instead of a k-d tree query, which
+  /// makes projections of moving vertices cheaper (the result is the same closest point).
+  /// @{
+  Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return faces_.closest_point(p, hint); }
+  Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
+  {
+    return curves_.empty() ? project_on_surface(p, hint) : curves_.closest_point(p, hint);
+  }
+  /// @}
+
+  static double angle(const Point_3& a, const Point_3& o, const Point_3& b)
+  {
+    const Vector_3 u = a - o, v = b - o;
+    return std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(u, v).squared_length())), CGAL::to_double(u * v));
+  }
+  // the smallest angle lies opposite the shortest edge: one atan2 instead of three (the relaxer's
+  // angle searches spend most of their time here)
+  static double min_angle(const Point_3& a, const Point_3& b, const Point_3& c)
+  {
+    const double ab = CGAL::to_double(CGAL::squared_distance(a, b));
+    const double bc = CGAL::to_double(CGAL::squared_distance(b, c));
+    const double ca = CGAL::to_double(CGAL::squared_distance(c, a));
+    if(bc <= ab && bc <= ca) return angle(b, a, c);
+    if(ca <= ab) return angle(a, b, c);
+    return angle(a, c, b);
+  }
+  static Vector_3 normal(const Point_3& a, const Point_3& b, const Point_3& c) { return CGAL::cross_product(b - a, c - a); }
+  static double cos_between(const Vector_3& a, const Vector_3& b)
+  {
+    const double la = std::sqrt(CGAL::to_double(a.squared_length())), lb = std::sqrt(CGAL::to_double(b.squared_length()));
+    return (la > 0 && lb > 0) ? CGAL::to_double(a * b) / (la * lb) : -1;
+  }
+
+  template <class Mesh, class IsFeatureEdge>
+  std::size_t feature_degree(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, IsFeatureEdge is_feature) const
+  {
+    std::size_t d = 0;
+    for(auto h : CGAL::halfedges_around_target(v, m)) if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) ++d;
+    return d;
+  }
+
+  template <class Mesh>
+  bool folds(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, const Point_3& to) const
+  {
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      if(is_border(h, m)) continue;
+      const Point_3& a = get(get(CGAL::vertex_point, m), source(h, m));
+      const Point_3& b = get(get(CGAL::vertex_point, m), target(next(h, m), m));
+      // triangle (a, v, b) in this order around the face
+      const Vector_3 before = normal(a, get(get(CGAL::vertex_point, m), v), b), after = normal(a, to, b);
+      if(cos_between(before, after) < 0.5) return true;
+    }
+    return false;
+  }
+
+  // the two new triangles of a flip stay close to the old ones
+  template <class Mesh>
+  bool flip_is_safe(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m, double cos_max) const
+  {
+    const auto p = source(h, m), q = target(h, m);
+    const auto r = target(next(h, m), m), s = target(next(opposite(h, m), m), m);
+    if(r == s || halfedge(r, s, m).second) return false;
+    if(degree(p, m) <= 3 || degree(q, m) <= 3) return false;
+    const Point_3 &P = get(get(CGAL::vertex_point, m), p), &Q = get(get(CGAL::vertex_point, m), q), &R = get(get(CGAL::vertex_point, m), r), &S = get(get(CGAL::vertex_point, m), s);
+    const Vector_3 n1 = normal(P, Q, R), n2 = normal(Q, P, S);
+    const Vector_3 m1 = normal(R, S, Q), m2 = normal(S, R, P);   // new triangles (r, s, q), (s, r, p)
+    // (area-weighted: the normal of a nearly flat triangle is noise)
+    const Vector_3 avg = n1 + n2;
+    return cos_between(m1, avg) > cos_max && cos_between(m2, avg) > cos_max && cos_between(m1, m2) > cos_max;
+  }
+
+  // how many more of its four vertices a flip of h makes irregular (valence not 6, not 4 on a
+  // border): negative when fewer
+  template <class Mesh>
+  static int irregular_change(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
+    const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+    return irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1)
+         - (irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0));
+  }
+  // the smallest angle of the two triangles of h, and of the two a flip of h would make
+  template <class Mesh>
+  static double min_angle_of_faces(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    const Point_3 &P = get(vpm, source(h, m)), &Q = get(vpm, target(h, m));
+    const Point_3 &R = get(vpm, target(next(h, m), m)), &T = get(vpm, target(next(opposite(h, m), m), m));
+    return std::min(min_angle(P, Q, R), min_angle(Q, P, T));
+  }
+  template <class Mesh>
+  static double min_angle_after_flip(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    const Point_3 &P = get(vpm, source(h, m)), &Q = get(vpm, target(h, m));
+    const Point_3 &R = get(vpm, target(next(h, m), m)), &T = get(vpm, target(next(opposite(h, m), m), m));
+    return std::min(min_angle(R, T, Q), min_angle(T, R, P));
+  }
+
+  // calls f(x) for each vertex of the faces that intersect now but not in `before` (sorted pairs),
+  // where only the faces of `changed` moved or are new since `before` was taken
+  template <class Mesh, class Pairs, class FaceRange, class F>
+  void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, const FaceRange& changed, F f) const
+  {
+    for(const auto& fp : internal::intersecting_pairs_near(m, changed)) {
+      if(std::binary_search(before.begin(), before.end(), fp)) continue;
+      if(near_input_crossing(fp.first, m) && near_input_crossing(fp.second, m)) continue;
+      for(auto face : {fp.first, fp.second})
+        for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
+    }
+  }
+
+  // whether the centroid of face f of m lies within two of f's longest edge's lengths of the
+  // centroid of a face of the input that cuts the input (one part of it runs through another): the
+  // mesh follows the input there, and a crossing of it is the input's own (the quality report
+  // leaves out such crossings too, by its own measure: two mean edge lengths of tm to the face)
+  template <class Mesh>
+  bool near_input_crossing(typename boost::graph_traits<Mesh>::face_descriptor f, const Mesh& m) const
+  {
+    if(!input_crossings_known_) {
+      input_crossings_known_ = true;
+      const auto pairs = internal::intersecting_pairs(input_);
+      const auto vpm = get(CGAL::vertex_point, input_);
+      std::vector<typename boost::graph_traits<InputMesh>::face_descriptor> crossing;
+      for(const auto& fp : pairs) { crossing.push_back(fp.first); crossing.push_back(fp.second); }
+      std::sort(crossing.begin(), crossing.end());
+      crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+      for(auto g : crossing) {
+        const auto h = halfedge(g, input_);
+        input_crossings_.push_back(CGAL::centroid(get(vpm, source(h, input_)), get(vpm, target(h, input_)), get(vpm, target(next(h, input_), input_))));
+      }
+    }
+    if(input_crossings_.empty()) return false;
+    const auto vpm = get(CGAL::vertex_point, m);
+    const auto h = halfedge(f, m);
+    const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
+    const double reach2 = 4 * std::max({CGAL::to_double(CGAL::squared_distance(a, b)), CGAL::to_double(CGAL::squared_distance(b, c)),
+                                        CGAL::to_double(CGAL::squared_distance(c, a))});
+    const Point_3 x = CGAL::centroid(a, b, c);
+    for(const Point_3& p : input_crossings_)
+      if(CGAL::to_double(CGAL::squared_distance(p, x)) <= reach2) return true;
+    return false;
+  }
+
+  // the smallest angle of the triangles around v with v at `at`, and the sum of their smallest
+  // angles; (-1, -1) when one of them would turn over (its normal more than 60 degrees away from
+  // the current one)
+  template <class Mesh>
+  std::pair<double, double> smallest_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m,
+                                                   const Point_3& at) const
+  {
+    return smallest_angles_around(v, m, at, [](typename boost::graph_traits<Mesh>::vertex_descriptor) { return 1.0; });
+  }
+  // the same with the angles at each other vertex x of the triangles scaled by tip_scale(x)
+  template <class Mesh, class TipScale>
+  std::pair<double, double> smallest_angles_around(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m,
+                                                   const Point_3& at, TipScale tip_scale) const
+  {
+    auto vpm = get(CGAL::vertex_point, m);
+    double worst = CGAL_PI, sum = 0;
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      if(is_border(h, m)) continue;
+      const Point_3& a = get(vpm, source(h, m));
+      const Point_3& b = get(vpm, target(next(h, m), m));
+      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return {-1, -1};
+      const double sa = tip_scale(source(h, m)), sb = tip_scale(target(next(h, m), m));
+      const double x = sa == 1 && sb == 1 ? min_angle(a, at, b)
+                                          : std::min({angle(at, a, b) * sa, angle(a, at, b), angle(a, b, at) * sb});
+      worst = std::min(worst, x);
+      sum += x;
+    }
+    return {worst, sum};
+  }
+
+  // what a vertex may do: 2 fixed (a corner, or where features meet), 1 slide on a feature, 0 free
+  template <class Mesh, class IsFeatureEdge, class IsCorner>
+  int constraint(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner) const
+  {
+    if(is_corner(v)) return 2;
+    const std::size_t fd = feature_degree(v, m, is_feature);
+    return fd == 0 ? 0 : fd == 2 ? 1 : 2;
+  }
+
+  // splits the edge of h at `at` and its (one or two) triangles: the new vertex, of degree 3 or 4
+  template <class Mesh>
+  static typename boost::graph_traits<Mesh>::vertex_descriptor
+  insert_vertex_on_edge(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Point_3& at, Mesh& m)
+  {
+    const auto g0 = opposite(h, m);
+    const auto hnew = CGAL::Euler::split_edge(h, m);   // hnew points to the new vertex, followed by h
+    const auto v = target(hnew, m);
+    put(get(CGAL::vertex_point, m), v, at);
+    for(auto g : {hnew, g0})
+      if(!is_border(g, m)) CGAL::Euler::split_face(g, next(next(g, m), m), m);
+    return v;
+  }
+
+  // the inverse of insert_vertex_on_edge for an interior edge (a, b): v's four triangles become two
+  template <class Mesh>
+  static void remove_vertex_on_edge(typename boost::graph_traits<Mesh>::vertex_descriptor v,
+                                    typename boost::graph_traits<Mesh>::vertex_descriptor a,
+                                    typename boost::graph_traits<Mesh>::vertex_descriptor b, Mesh& m)
+  {
+    const auto g = CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
+    auto to_a = boost::graph_traits<Mesh>::null_halfedge(), to_b = boost::graph_traits<Mesh>::null_halfedge();
+    for(auto x : CGAL::halfedges_around_face(g, m)) {
+      if(target(x, m) == a) to_a = x;
+      if(target(x, m) == b) to_b = x;
+    }
+    CGAL::Euler::split_face(to_a, to_b, m);
+  }
+
+private:
+  const InputMesh& input_;
+  double diagonal_ = 0;
+  Face_tree faces_;
+  // the centroids of the input's faces that cut another of its faces, found the first time a new
+  // crossing of the mesh is met (see near_input_crossing)
+  mutable bool input_crossings_known_ = false;
+  mutable std::vector<Point_3> input_crossings_;
+  internal::Feature_curves<GeomTraits> curves_;
+};
+
+} // namespace internal
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_RELAXATION_INTERNAL_RELAXATION_CONTEXT_H

@@ -1,0 +1,415 @@
+// The relaxation's operators beyond the paper (include/Poisson_remesh/Postprocessing/), one test
+// each on a small constructed mesh that shows what the operator is for: the flaw is built in, the
+// operator is run alone (directly, or through Lloyd_relaxer::relax() with every other step off),
+// and its objective must improve under the shared constraints (topology kept, every vertex on the
+// input, no fold). The same run with the operator switched off leaves the flaw, so each test fails
+// without its operator. The judge (angles, valences, distances) is computed here, apart from the
+// library's own predicates.
+#include "analytic_meshes.h"
+
+#include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef Mesh::Vertex_index V;
+namespace PR = Poisson_remesh;
+namespace P = Poisson_remesh::Postprocessing;
+typedef PR::internal::Relaxation_context<Mesh, K> Context;
+
+namespace {
+
+// ---- the judge --------------------------------------------------------------------------------
+
+double angle_deg(const Point& o, const Point& a, const Point& b)
+{
+  const double ux = a.x() - o.x(), uy = a.y() - o.y(), uz = a.z() - o.z();
+  const double wx = b.x() - o.x(), wy = b.y() - o.y(), wz = b.z() - o.z();
+  const double dot = ux * wx + uy * wy + uz * wz;
+  const double lu = std::sqrt(ux * ux + uy * uy + uz * uz), lw = std::sqrt(wx * wx + wy * wy + wz * wz);
+  return std::acos(std::max(-1.0, std::min(1.0, dot / (lu * lw)))) * 180 / CGAL_PI;
+}
+
+std::array<Point, 3> corners(Mesh::Face_index f, const Mesh& m)
+{
+  const auto h = halfedge(f, m);
+  return {m.point(source(h, m)), m.point(target(h, m)), m.point(target(next(h, m), m))};
+}
+
+double smallest_angle(Mesh::Face_index f, const Mesh& m)
+{
+  const auto p = corners(f, m);
+  return std::min({angle_deg(p[0], p[1], p[2]), angle_deg(p[1], p[2], p[0]), angle_deg(p[2], p[0], p[1])});
+}
+
+double min_angle(const Mesh& m)
+{
+  double a = 180;
+  for(auto f : faces(m)) a = std::min(a, smallest_angle(f, m));
+  return a;
+}
+
+std::size_t count_below(const Mesh& m, double degrees)
+{
+  std::size_t n = 0;
+  for(auto f : faces(m)) if(smallest_angle(f, m) < degrees) ++n;
+  return n;
+}
+
+std::size_t irregular(const Mesh& m)
+{
+  std::size_t n = 0;
+  for(auto v : vertices(m)) if(degree(v, m) != (is_border(v, m) ? 4u : 6u)) ++n;
+  return n;
+}
+
+// V - E + F and the number of border edges: what the operators may not change (a plane patch
+// keeps one border; its length in edges may grow by splits)
+long euler_characteristic(const Mesh& m)
+{
+  return long(std::distance(vertices(m).begin(), vertices(m).end())) - long(std::distance(edges(m).begin(), edges(m).end())) +
+         long(std::distance(faces(m).begin(), faces(m).end()));
+}
+
+std::size_t border_cycles(const Mesh& m)
+{
+  std::vector<Mesh::Halfedge_index> cycles;
+  CGAL::Polygon_mesh_processing::extract_boundary_cycles(m, std::back_inserter(cycles));
+  return cycles.size();
+}
+
+// every face of a mesh of the plane z = 0 keeps its upward orientation (no fold)
+bool no_fold_in_plane(const Mesh& m)
+{
+  for(auto f : faces(m)) {
+    const auto p = corners(f, m);
+    const double nz = (p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[1].y() - p[0].y()) * (p[2].x() - p[0].x());
+    if(!(nz > 0)) return false;
+  }
+  return true;
+}
+
+// the largest distance from a point of `points` to the surface of `m`
+double farthest(const std::vector<Point>& points, const Mesh& m)
+{
+  CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> tree(faces(m).first, faces(m).second, m);
+  double d = 0;
+  for(const Point& p : points) d = std::max(d, std::sqrt(tree.squared_distance(p)));
+  return d;
+}
+
+// ---- the constructions -------------------------------------------------------------------------
+
+// a regular grid of the unit square (right triangles, interior valence 6 on a grid split one way)
+Mesh square(std::size_t n)
+{
+  analytic::Soup s;
+  for(std::size_t j = 0; j <= n; ++j)
+    for(std::size_t i = 0; i <= n; ++i) s.points.push_back({double(i) / double(n), double(j) / double(n), 0});
+  auto id = [&](std::size_t i, std::size_t j) { return j * (n + 1) + i; };
+  for(std::size_t j = 0; j < n; ++j)
+    for(std::size_t i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s.to_mesh<Mesh>();
+}
+
+V vertex_at(const Mesh& m, double x, double y)
+{
+  V best = *vertices(m).begin();
+  for(V v : vertices(m))
+    if(CGAL::squared_distance(m.point(v), Point(x, y, 0)) < CGAL::squared_distance(m.point(best), Point(x, y, 0))) best = v;
+  return best;
+}
+
+auto no_feature = [](Mesh::Edge_index) { return false; };
+
+// relax() with the paper's rounds and every operator off (each test turns its own on)
+PR::Relaxation_settings nothing_but_the_last_lloyd_pass()
+{
+  PR::Relaxation_settings s;
+  s.iterations = 0;
+  s.delaunay_flips = s.valence_flips = false;
+  s.lloyd_guard.min_angle = 0;
+  s.long_edge_split.ratio = 0;
+  s.sliver_collapse.enabled = false;
+  s.fidelity.max_deviation = 0;
+  s.angle_smoothing.rounds = 0;
+  s.regularity.rounds = 0;
+  s.regularity.final_min_angle = 0;
+  s.angle_optimization.rounds = 0;
+  s.refinement.rounds = 0;
+  s.untangling.rounds = 0;
+  return s;
+}
+
+struct Counting_new_vertex
+{
+  std::vector<std::pair<V, bool>>* added;
+  void operator()(V v, bool on_feature) const { added->push_back({v, on_feature}); }
+};
+
+} // namespace
+
+TEST_CASE("sliver collapse: a sliver between two pinned vertices closer than the spacing goes", "[operators][collapse]")
+{
+  const Mesh in = square(20);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("sliver collapse " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    // an interior vertex pushed next to its neighbour: slivers and a crowded star; every vertex
+    // is pinned (a corner), so that no move can mend them
+    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6), u = vertex_at(m, 4.0 / 6, 3.0 / 6);
+    m.point(v) = Point(m.point(u).x() - 0.01, m.point(u).y() + 0.002, 0);
+    const std::size_t slivers = count_below(m, 30);
+    const double worst = min_angle(m);
+    REQUIRE(slivers >= 2);
+    const long chi = euler_characteristic(m);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    s.sliver_collapse.enabled = on;
+    REQUIRE(no_fold_in_plane(m));
+    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s);
+    m.collect_garbage();
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
+    for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+    if(on) {
+      CHECK(stats.collapses >= 1);
+      CHECK(count_below(m, 30) < slivers);
+      CHECK(min_angle(m) > worst + 10);
+    } else {
+      CHECK(stats.collapses == 0);
+      CHECK(count_below(m, 30) == slivers);
+    }
+  }
+}
+
+TEST_CASE("long-edge split: a border edge three times its neighbours' length is split on the border", "[operators][split]")
+{
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("long-edge split " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    // the border vertices at x = 3/6 and 4/6 collapsed into their border neighbour at 2/6: one
+    // border edge of length 3/6 between edges of 1/6
+    const V a = vertex_at(m, 2.0 / 6, 0);
+    for(double x : {3.0 / 6, 4.0 / 6}) {
+      auto h = halfedge(vertex_at(m, x, 0), a, m);
+      REQUIRE(h.second);
+      const Point keep = m.point(a);
+      const V kept = CGAL::Euler::collapse_edge(edge(h.first, m), m);
+      REQUIRE(kept == a);
+      m.point(kept) = keep;
+    }
+    m.collect_garbage();
+    REQUIRE(no_fold_in_plane(m));
+    auto longest_border = [](const Mesh& x) {
+      double l = 0;
+      for(auto e : edges(x))
+        if(is_border(e, x)) l = std::max(l, std::sqrt(CGAL::squared_distance(x.point(source(halfedge(e, x), x)), x.point(target(halfedge(e, x), x)))));
+      return l;
+    };
+    REQUIRE(longest_border(m) == Approx(3.0 / 6));
+    const long chi = euler_characteristic(m);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) s.long_edge_split.ratio = 1.6;
+    std::vector<std::pair<V, bool>> added;
+    relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
+    if(on) {
+      REQUIRE(added.size() == 1);
+      CHECK(added[0].second);   // a feature (border) vertex
+      const Point p = m.point(added[0].first);
+      CHECK(std::abs(p.y()) < 1e-12);   // on the border
+      CHECK(p.x() == Approx(3.5 / 6).margin(1e-9));   // its midpoint
+      CHECK(longest_border(m) == Approx(1.5 / 6));
+    } else {
+      CHECK(added.empty());
+      CHECK(longest_border(m) == Approx(3.0 / 6));
+    }
+  }
+}
+
+TEST_CASE("fidelity insertions: a crest finer than the spacing, cut across by the mesh, is put back", "[operators][fidelity]")
+{
+  // the input: a square with a narrow ridge along x = 1/2; the mesh: a coarse grid of points of
+  // the input whose grid lines miss the ridge, so that its triangles cut across it
+  const std::size_t fine = 42, coarse = 7;
+  auto ridge = [](double x) { return 0.1 * std::exp(-(x - 0.5) * (x - 0.5) / (2 * 0.03 * 0.03)); };
+  auto lift = [&](Mesh x) {
+    for(V v : vertices(x)) x.point(v) = Point(x.point(v).x(), x.point(v).y(), ridge(x.point(v).x()));
+    return x;
+  };
+  const Mesh in = lift(square(fine));
+  std::vector<Point> input_points;
+  for(V v : vertices(in)) input_points.push_back(in.point(v));
+  const auto features = PR::detect_features(in, PR::parameters::feature_policy(PR::Feature_policy::none));
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("fidelity insertions " << (on ? "on" : "off"));
+    Mesh m = lift(square(coarse));
+    const double before = farthest(input_points, m);
+    REQUIRE(before > 0.05);   // the crest is missed by about its height
+    const long chi = euler_characteristic(m);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) {
+      s.fidelity.max_deviation = 0.008;
+      s.fidelity.max_insertions_share = 0.25;
+      s.fidelity.final_pass = false;
+    }
+    std::vector<std::pair<V, bool>> added;
+    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
+    relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
+    m.collect_garbage();
+    CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(crossings));
+    CHECK(crossings.empty());
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    const double after = farthest(input_points, m);
+    if(on) {
+      CHECK(!added.empty());
+      // the inserted points are the input's own
+      CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> input_tree(faces(in).first, faces(in).second, in);
+      for(V x : vertices(m)) CHECK(std::sqrt(input_tree.squared_distance(m.point(x))) < 1e-9);
+      CHECK(after < 0.5 * before);
+    } else {
+      CHECK(added.empty());
+      CHECK(after == Approx(before));
+    }
+  }
+}
+
+TEST_CASE("angle optimization and smoothing: a free vertex pushed off its place moves back to better angles", "[operators][angles]")
+{
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  const Context context(in, features);
+  auto make = [] {
+    Mesh m = square(6);
+    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
+    m.point(v) = Point(3.0 / 6 + 0.7 / 6, 3.0 / 6 + 0.05 / 6, 0);   // near its right neighbour: sharp triangles
+    return std::make_pair(m, v);
+  };
+  REQUIRE(no_fold_in_plane(make().first));
+  SECTION("optimization raises the smallest angle around the vertex")
+  {
+    auto [m, v] = make();
+    const double worst = min_angle(m);
+    REQUIRE(worst < 20);
+    PR::Relaxation_statistics stats;
+    std::size_t moved = 0;
+    for(int round = 0; round < 4; ++round)
+      moved += P::optimize_angles(context, m, no_feature, [&](V x) { return x != v; }, P::Angle_optimization_settings(), 30, 0.008, stats);
+    CHECK(moved > 0);
+    CHECK(min_angle(m) > 40);
+    CHECK(std::abs(m.point(v).z()) < 1e-12);
+    CHECK(no_fold_in_plane(m));
+  }
+  SECTION("smoothing raises the sum of the smallest angles without lowering the smallest")
+  {
+    auto [m, v] = make();
+    auto sum_around = [&](const Mesh& x) {
+      double s = 0;
+      for(auto h : CGAL::halfedges_around_target(v, x)) if(!is_border(h, x)) s += smallest_angle(face(h, x), x);
+      return s;
+    };
+    const double worst = min_angle(m), sum = sum_around(m);
+    PR::Relaxation_statistics stats;
+    const std::size_t moved = P::smooth_angles(context, m, no_feature, [&](V x) { return x != v; }, 30, 0.008, 35, stats);
+    CHECK(moved == 1);
+    CHECK(sum_around(m) > sum + 10);
+    CHECK(min_angle(m) >= worst);
+    CHECK(no_fold_in_plane(m));
+  }
+}
+
+TEST_CASE("regularity flips: a grid with one diagonal turned gets its valence-6 vertices back", "[operators][regularity]")
+{
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("regularity flips " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    const std::size_t regular = irregular(m);
+    // the diagonal of the interior quad at (2..3, 2..3) turned: four vertices 5 or 7
+    const auto h = halfedge(vertex_at(m, 2.0 / 6, 2.0 / 6), vertex_at(m, 3.0 / 6, 3.0 / 6), m);
+    REQUIRE(h.second);
+    CGAL::Euler::flip_edge(h.first, m);
+    REQUIRE(irregular(m) == regular + 4);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) s.regularity.rounds = 4;
+    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s);
+    CHECK(no_fold_in_plane(m));
+    if(on) {
+      CHECK(stats.valence_flips >= 1);
+      CHECK(irregular(m) == regular);
+      CHECK(min_angle(m) >= 45 - 1e-9);
+    } else {
+      CHECK(irregular(m) == regular + 4);
+    }
+  }
+}
+
+TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a removal or a new vertex", "[operators][refinement]")
+{
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("refinement " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    // an interior vertex pushed towards a diagonal neighbour: pinned (all vertices are), its
+    // triangles sharp; only a change of connectivity can mend them
+    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
+    m.point(v) = Point(3.0 / 6 + 0.8 / 6, 3.0 / 6 + 0.7 / 6, 0);
+    const std::size_t sharp = count_below(m, 30);
+    const double worst = min_angle(m);
+    REQUIRE(sharp >= 2);
+    REQUIRE(no_fold_in_plane(m));
+    const long chi = euler_characteristic(m);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) s.refinement.rounds = 3;
+    std::vector<std::pair<V, bool>> added;
+    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
+    m.collect_garbage();
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
+    for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+    INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
+    if(on) {
+      CHECK(stats.refinement_flips + stats.refinement_removals + stats.refinement_insertions > 0);
+      CHECK(count_below(m, 30) <= sharp);
+      CHECK(min_angle(m) > worst + 5);
+    } else {
+      CHECK(count_below(m, 30) == sharp);
+      CHECK(min_angle(m) == worst);
+    }
+  }
+}
