@@ -20,9 +20,8 @@
 // own.
 //
 // The figures: the package's quality_report() (the same definitions as everywhere: θmin away from
-// the input's sharp corners, crossings away from the input's own, Hausdorff bounded to 0.1%), and
-// here, from CGAL's primitives, the RMS distance (AABB tree) and the topology (genus, components,
-// borders).
+// the input's sharp corners, crossings away from the input's own, Hausdorff bounded to 0.1%, genus,
+// components and borders), and here, from CGAL's primitives, the RMS distance (AABB tree).
 //
 // usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices N] [--max-vertices N]
 //            [--seed S] [--jobs N] [--timeout SECONDS] [--peer-iterations N] [--peer-sharp-angle DEG]
@@ -37,9 +36,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
-#include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/version.h>
 
@@ -58,7 +55,6 @@
 #include <functional>
 #include <iostream>
 #include <map>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -82,43 +78,12 @@ struct Figures
   double seconds = 0, peak_mib = 0, runs = 1;
 };
 
-static double diagonal(const Mesh& m)
-{
-  CGAL::Bbox_3 b;
-  for(auto v : vertices(m)) b += m.point(v).bbox();
-  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
-}
-
-// genus, components and border cycles of a triangle mesh
-static std::array<long, 3> topology(const Mesh& m)
-{
-  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
-  const std::size_t components = PMP::connected_components(m, component);
-  std::vector<long> V(components, 0), E(components, 0), F(components, 0), B(components, 0);
-  for(auto f : faces(m)) ++F[get(component, f)];
-  std::set<std::pair<std::size_t, Mesh::Vertex_index>> seen;
-  for(auto f : faces(m))
-    for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) {
-      const std::size_t c = get(component, f);
-      if(seen.insert({c, target(h, m)}).second) ++V[c];
-      if(is_border(opposite(h, m), m) || h < opposite(h, m)) ++E[c];
-    }
-  std::vector<Mesh::Halfedge_index> borders;
-  PMP::extract_boundary_cycles(m, std::back_inserter(borders));
-  for(auto h : borders) ++B[get(component, face(opposite(h, m), m))];
-  long genus = 0, border_cycles = 0;
-  for(std::size_t c = 0; c < components; ++c) {
-    genus += (2 - (V[c] - E[c] + F[c]) - B[c]) / 2;
-    border_cycles += B[c];
-  }
-  return {genus, long(components), border_cycles};
-}
-
 static Figures measure(const Mesh& out, const Mesh& input)
 {
   Figures r;
   r.vertices = double(std::distance(vertices(out).begin(), vertices(out).end()));
-  const double diag = diagonal(input);
+  const PR::Quality_report in = PR::quality_report(input, PR::parameters::check_self_intersections(false));
+  const double diag = in.bbox_diagonal;
   // the package's quality report for the angles, valences, Hausdorff distance and crossings (θmin
   // away from the input's sharp corners and crossings away from the input's own are defined there)
   const PR::Quality_report q = PR::quality_report(out, input);
@@ -145,7 +110,8 @@ static Figures measure(const Mesh& out, const Mesh& input)
     for(const auto& p : points) { sq += tree.squared_distance(p); ++count; }
   }
   r.rms = count ? std::sqrt(sq / double(count)) / diag : 0;
-  r.topology_kept = topology(out) == topology(input) ? 1 : 0;
+  r.topology_kept = q.genus == in.genus && q.number_of_components == in.number_of_components &&
+                    q.number_of_border_cycles == in.number_of_border_cycles ? 1 : 0;
   return r;
 }
 
@@ -419,6 +385,12 @@ static std::size_t declared_vertices(const std::string& file)
   try { return tokens.size() > 1 ? std::stoul(tokens[1]) : 0; } catch(...) { return 0; }
 }
 
+// the name a mesh of --meshes is shown by: a CGAL data mesh's name, or a file's stem
+static std::string shown(const std::string& mesh)
+{
+  return mesh.find('/') != std::string::npos ? std::filesystem::path(mesh).stem().string() : mesh;
+}
+
 // the rows of a JSON file this program wrote (one row per line), and its run settings into `o`
 static std::vector<Row> load_rows(std::istream& in, Options& o)
 {
@@ -551,8 +523,7 @@ int main(int argc, char** argv)
     std::vector<Task> tasks;
     for(const std::string& m : meshes)
       for(const std::string& c : contenders) {
-        const bool is_path = m.find('/') != std::string::npos;
-        tasks.push_back({is_path ? std::filesystem::path(m).stem().string() : m, is_path ? m : options.data + "/meshes/" + m + ".off", c});
+        tasks.push_back({shown(m), m.find('/') != std::string::npos ? m : options.data + "/meshes/" + m + ".off", c});
       }
     char scratch_template[] = "/tmp/corpus_benchmark.XXXXXX";
     const char* scratch = mkdtemp(scratch_template);
@@ -578,7 +549,7 @@ int main(int argc, char** argv)
   md << "| mesh | input V | | V (% of input) | θmin away (°) | θ̄min (°) | θmax (°) | irregular (%) | RMS (% diag) | Hausdorff (% diag) | new crossings | topology kept | seconds | peak MiB | floor |\n"
      << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|---|\n";
   for(const std::string& m0 : meshes) {
-    const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+    const std::string m = shown(m0);
     const Row* peer = find(m, "cgal");
     for(const std::string c : {"ours", "cgal"}) {
       const Row* r = find(m, c);
@@ -602,7 +573,7 @@ int main(int argc, char** argv)
     std::size_t passes = 0, ran = 0;
     std::vector<double> ratio;
     for(const std::string& m : meshes) {
-      const std::string name = m.find('/') != std::string::npos ? std::filesystem::path(m).stem().string() : m;
+      const std::string name = shown(m);
       const Row* r = find(name, contender);
       const Row* peer = find(name, "cgal");
       if(!r) continue;
@@ -636,7 +607,7 @@ int main(int argc, char** argv)
   md << summary.str();
   md << "\nMisses (ours):\n\n";
   for(const std::string& m0 : meshes) {
-    const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+    const std::string m = shown(m0);
     const Row* r = find(m, "ours");
     if(!r) continue;
     const auto why = misses(*r, find(m, "cgal"));
@@ -659,7 +630,7 @@ int main(int argc, char** argv)
       std::size_t passes = 0;
       double seconds = 0;
       for(const std::string& m0 : meshes) {
-        const std::string m = m0.find('/') != std::string::npos ? std::filesystem::path(m0).stem().string() : m0;
+        const std::string m = shown(m0);
         const Row* r = find(m, contender);
         if(!r) continue;
         if(misses(*r, find(m, "cgal")).empty()) ++passes;

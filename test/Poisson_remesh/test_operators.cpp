@@ -340,7 +340,7 @@ TEST_CASE("angle optimization and smoothing: a free vertex pushed off its place 
     };
     const double worst = min_angle(m), sum = sum_around(m);
     PR::Relaxation_statistics stats;
-    const std::size_t moved = P::smooth_angles(context, m, no_feature, [&](V x) { return x != v; }, 30, 0.008, 35, stats);
+    const std::size_t moved = P::smooth_angles(context, m, no_feature, [&](V x) { return x != v; }, stats);
     CHECK(moved == 1);
     CHECK(sum_around(m) > sum + 10);
     CHECK(min_angle(m) >= worst);

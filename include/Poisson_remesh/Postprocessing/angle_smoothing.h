@@ -29,11 +29,10 @@ struct Angle_smoothing_settings
 /// One round of angle smoothing of `m` (the vertices for which `is_fixed` holds stay). Returns the
 /// number of vertices moved.
 template <class Context, class Mesh, class IsFeatureEdge, class IsFixed>
-std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, double sliver_angle, double max_deviation,
-                          double optimized_angle, Relaxation_statistics& stats)
+std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, Relaxation_statistics& stats)
 {
-  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, optimized_angle, sliver_angle,
-                                                       max_deviation, stats);
+  // (the search's angle thresholds and pin reach serve the other goals only)
+  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats);
 }
 
 } // namespace Postprocessing

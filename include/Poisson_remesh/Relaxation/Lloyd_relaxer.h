@@ -213,7 +213,7 @@ public:
           optimize_angles();
         }
     };
-    auto smooth = [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, s.sliver_angle, tolerance, optimized, stats); };
+    auto smooth = [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats); };
     auto untangle = [&](std::size_t* collapses) {
       for(unsigned int round = 0; round < s.untangling.rounds; ++round)
         if(P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses) == 0) break;

@@ -29,13 +29,6 @@ struct Unit_density
   template <class V> double operator()(V) const { return 1.0; }
 };
 
-/// A guard that lets every Lloyd move through (the paper's step alone).
-struct No_lloyd_guard
-{
-  /// always true
-  template <class V, class Mesh, class Point> bool operator()(V, const Mesh&, std::size_t, double, Point&) const { return true; }
-};
-
 /// Eq. 6 in the exponential-map layout of the one-ring of `v`, mapped back to 3D: the centroid of
 /// the ring's triangles' centroids, weighted by their area (`area_weighted`; else alike) times their
 /// mean density (`vertex_density(x)` > 0 at the vertices). False when the ring is degenerate.
