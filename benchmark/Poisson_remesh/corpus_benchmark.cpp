@@ -76,7 +76,20 @@ struct Figures
   double rms = 0, hausdorff = 0;   // over the input's bounding-box diagonal
   double self_intersections_away = 0, topology_kept = 0;
   double seconds = 0, peak_mib = 0, runs = 1;
+  std::map<std::string, double> stages;   // ours: where the time of the kept run went (stage_names())
 };
+
+// the stages of our remesh, the relaxation's by step, and the remakes' own checks and copies
+static const std::vector<std::string>& stage_names()
+{
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"features", "sampling", "tessellation"};
+    PR::Relaxation_times().for_each([&](const char* step, double) { n.push_back(step); });
+    n.push_back("remake_checks");
+    return n;
+  }();
+  return names;
+}
 
 static Figures measure(const Mesh& out, const Mesh& input)
 {
@@ -185,10 +198,13 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
       output.clear();
       std::ofstream("/proc/self/clear_refs") << "5";
       const auto start = std::chrono::steady_clock::now();
-      PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
-                                          .random_seed(options.seed).relaxation_settings(settings)
-                                          .feature_grading(grading).regrading_attempts(remakes));
+      const auto result = PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
+                                                              .random_seed(options.seed).relaxation_settings(settings)
+                                                              .feature_grading(grading).regrading_attempts(remakes));
       f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      f.stages = {{"features", result.seconds_features}, {"sampling", result.seconds_sampling}, {"tessellation", result.seconds_tessellation},
+                  {"remake_checks", result.seconds_relaxation - result.seconds_by_step.total()}};
+      result.seconds_by_step.for_each([&](const char* step, double seconds) { f.stages[step] = seconds; });
       f.peak_mib = peak_memory_mib();
       f.runs = run + 1;
       const double V = double(std::distance(vertices(output).begin(), vertices(output).end()));
@@ -201,6 +217,7 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
   r.seconds = f.seconds;
   r.peak_mib = f.peak_mib;
   r.runs = f.runs;
+  r.stages = f.stages;
   return r;
 }
 
@@ -224,6 +241,7 @@ static void write_row(const Row& row, int fd)
        << "\nirregular " << f.irregular << "\nrms " << f.rms << "\nhausdorff " << f.hausdorff << "\nself_intersections_away "
        << f.self_intersections_away << "\ntopology_kept " << f.topology_kept << "\nseconds " << f.seconds << "\npeak_mib "
        << f.peak_mib << "\nruns " << f.runs << "\n";
+    for(const auto& [stage, seconds] : f.stages) os << "stage_" << stage << " " << seconds << "\n";
   }
   const std::string s = os.str();
   std::size_t done = 0;
@@ -252,6 +270,8 @@ static Row read_row(const std::string& text, int status)
   f.max_angle = v["max_angle"]; f.irregular = v["irregular"]; f.rms = v["rms"]; f.hausdorff = v["hausdorff"];
   f.self_intersections_away = v["self_intersections_away"]; f.topology_kept = v["topology_kept"]; f.seconds = v["seconds"];
   f.peak_mib = v["peak_mib"]; f.runs = v["runs"];
+  for(const std::string& stage : stage_names())
+    if(v.count("stage_" + stage)) f.stages[stage] = v["stage_" + stage];
   return row;
 }
 
@@ -425,6 +445,8 @@ static std::vector<Row> load_rows(std::istream& in, Options& o)
       f.rms = number(line, "rms"); f.hausdorff = number(line, "hausdorff"); f.self_intersections_away = number(line, "new_crossings");
       f.topology_kept = field(line, "topology_kept") == "true" ? 1 : 0; f.seconds = number(line, "seconds");
       f.peak_mib = number(line, "peak_mib"); f.runs = number(line, "runs");
+      for(const std::string& stage : stage_names())
+        if(line.find("\"t_" + stage + "\": ") != std::string::npos) f.stages[stage] = number(line, "t_" + stage);
     }
     rows.push_back(r);
   }
@@ -605,6 +627,31 @@ int main(int argc, char** argv)
   summary_of("ours", summary, true);
   summary_of("cgal", summary, false);
   md << summary.str();
+  // where our time goes: each stage's share of the corpus total, and its median share per mesh
+  {
+    std::map<std::string, double> total;
+    std::map<std::string, std::vector<double>> shares;
+    double all = 0;
+    for(const Row& r : rows) {
+      if(r.contender != "ours" || !r.ok || r.f.stages.empty()) continue;
+      double sum = 0;
+      for(const auto& [stage, seconds] : r.f.stages) sum += seconds;
+      for(const auto& [stage, seconds] : r.f.stages) {
+        total[stage] += seconds;
+        shares[stage].push_back(sum > 0 ? seconds / sum : 0);
+      }
+      all += sum;
+    }
+    if(all > 0) {
+      md << "\nWhere our time goes (the kept calibration run of each mesh; the relaxation by step, each step's\n"
+         << "own time; remake_checks: the remakes' checks and copies, their runs counted in the stages):\n\n"
+         << "| stage | seconds over the corpus | share of the total | median share per mesh |\n|---|---:|---:|---:|\n";
+      for(const std::string& stage : stage_names())
+        if(total.count(stage))
+          md << "| " << stage << " | " << fmt(total[stage], 1) << " | " << fmt(100 * total[stage] / all, 1) << "% | "
+             << fmt(100 * quantile(shares[stage], 0.5), 1) << "% |\n";
+    }
+  }
   md << "\nMisses (ours):\n\n";
   for(const std::string& m0 : meshes) {
     const std::string m = shown(m0);
@@ -676,6 +723,8 @@ int main(int argc, char** argv)
            << ", \"irregular\": " << f.irregular << ", \"rms\": " << f.rms << ", \"hausdorff\": " << f.hausdorff
            << ", \"new_crossings\": " << f.self_intersections_away << ", \"topology_kept\": " << (f.topology_kept ? "true" : "false")
            << ", \"seconds\": " << f.seconds << ", \"peak_mib\": " << f.peak_mib << ", \"runs\": " << f.runs;
+      if(r.ok)
+        for(const auto& [stage, seconds] : f.stages) js << ", \"t_" << stage << "\": " << seconds;
       else {
         std::string e = r.error;
         std::replace(e.begin(), e.end(), '"', '\'');

@@ -95,6 +95,7 @@ static const char* usage =
   "  --strict            refuse zero-area faces and non-manifold vertices instead of repairing them\n"
   "                      (by default they are removed and split, and the program says how many)\n"
   "  --quiet             no progress on stderr (it is shown only when stderr is a terminal)\n"
+  "  --timings           the relaxation's time by step (the paper's and each operator beyond it)\n"
   "  --help              this text\n"
   "several inputs (batch):\n"
   "  -o, --output-dir D  remesh every input into folder D (created if missing)\n"
@@ -118,7 +119,7 @@ struct Options
   unsigned long seed = 0, iterations = 0, jobs = 1;
   long regrading = -1;   // (-1: the library's default, 6 for a uniform density, else 0)
   bool strict = false, self_intersections = true, compare_peer = false, features = true, grading = true;
-  bool full_report = false, quiet = false;
+  bool full_report = false, quiet = false, timings = false;
 };
 
 // One remesh: where it came from and went, and its figures (the summary's line).
@@ -299,6 +300,11 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
       if(run.number_of_regrading_attempts)
         say << "  note: remeshed " << run.number_of_regrading_attempts << " more time(s), sampling finer where the result"
             << " cut itself or kept triangles under 30 degrees; kept the best\n";
+      if(o.timings) {
+        say << "  relaxation by step (s):";
+        run.seconds_by_step.for_each([&](const char* step, double seconds) { if(seconds > 0) say << ' ' << step << ' ' << seconds; });
+        say << "; remakes' checks and copies " << run.seconds_relaxation - run.seconds_by_step.total() << "\n";
+      }
       if(run.number_of_merged_samples)
         say << "  note: " << run.number_of_merged_samples
             << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
@@ -619,6 +625,7 @@ int main(int argc, char** argv)
       else if(a == "--no-self-intersections") o.self_intersections = false;
       else if(a == "--full-report") o.full_report = true;
       else if(a == "--quiet" || a == "-q") o.quiet = true;
+      else if(a == "--timings") o.timings = true;
       else if(a == "-o" || a == "--output-dir") o.output_dir = args.value(a);
       else if(a == "--format") o.format = args.value(a);
       else if(a == "-j" || a == "--jobs") o.jobs = args.whole_number(a);

@@ -77,6 +77,9 @@ struct Poisson_remesh_result
   /// @{
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
   /// @}
+  /// the default relaxer's time by step, summed over the remakes (part of seconds_relaxation, which
+  /// adds the remakes' checks and copies)
+  Relaxation_times seconds_by_step;
   /// the time of the whole run in seconds
   double seconds() const { return seconds_features + seconds_sampling + seconds_tessellation + seconds_relaxation; }
 };
@@ -159,6 +162,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   bool output_is_best = true;
   const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
+  Relaxation_times seconds_by_step;
   unsigned int regraded = 0;
   // the pointed tips (the last corners of the feature set)
   std::vector<Point_3> tips;
@@ -301,6 +305,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
         boost::make_function_property_map<vertex_descriptor, bool>(is_fixed),
         boost::make_function_property_map<vertex_descriptor, double>(density), settings.iterations, new_vertex);
     }
+    seconds_by_step += result.relaxation.seconds;
     internal::collect_garbage(output);
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
@@ -331,6 +336,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   result.seconds_sampling = seconds[0];
   result.seconds_tessellation = seconds[1];
   result.seconds_relaxation = seconds[2];
+  result.seconds_by_step = seconds_by_step;
   return result;
 }
 

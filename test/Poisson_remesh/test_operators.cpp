@@ -413,3 +413,87 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
     }
   }
 }
+
+// The local self-intersection checks that every operator's take-backs rest on: the pairs near a few
+// changed faces (a box test against each, or a grid of their boxes when there are more) are those
+// of a whole-mesh check (CGAL's self_intersections, called here directly) that involve a changed
+// face; and after vertex moves, the new crossings found with only the crossing pairs put back for
+// a moment are those that a whole-mesh check of the earlier state gives.
+TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[operators][intersections]")
+{
+  // two 12 x 12 grids that cross: the unit square at z = 0 and a square standing at x = 0.53
+  analytic::Soup s;
+  const std::size_t n = 12;
+  auto add_grid = [&](auto place) {
+    const std::size_t first = s.points.size();
+    for(std::size_t j = 0; j <= n; ++j)
+      for(std::size_t i = 0; i <= n; ++i) s.points.push_back(place(double(i) / double(n), double(j) / double(n)));
+    auto id = [&](std::size_t i, std::size_t j) { return first + j * (n + 1) + i; };
+    for(std::size_t j = 0; j < n; ++j)
+      for(std::size_t i = 0; i < n; ++i) {
+        s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+  };
+  add_grid([](double u, double v) { return std::array<double, 3>{{u, v, 0}}; });
+  add_grid([](double u, double v) { return std::array<double, 3>{{0.53, u, v - 0.47}}; });
+  Mesh m = s.to_mesh<Mesh>();
+  typedef std::pair<Mesh::Face_index, Mesh::Face_index> Pair;
+  auto whole = [](const Mesh& mesh) {
+    std::vector<Pair> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(mesh, std::back_inserter(pairs));
+    for(Pair& p : pairs) if(p.second < p.first) std::swap(p.first, p.second);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  };
+  const std::vector<Pair> all = whole(m);
+  REQUIRE(all.size() > 20);
+  std::vector<Mesh::Face_index> fs(faces(m).begin(), faces(m).end());
+  // changed sets of 3, 20 (box tests) and 250 faces (the grid), drawn with a fixed step
+  for(std::size_t count : {3u, 20u, 250u}) {
+    REQUIRE(2 * count <= fs.size());
+    std::vector<Mesh::Face_index> changed;
+    for(std::size_t k = 0; k < count; ++k) changed.push_back(fs[(k * 7919 + count) % fs.size()]);
+    // (and always a face on the crossing)
+    changed.push_back(all.front().first);
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    const auto near = PR::internal::intersecting_pairs_near(m, changed);
+    std::size_t expected = 0;
+    for(const Pair& p : all)
+      if(std::binary_search(changed.begin(), changed.end(), p.first) || std::binary_search(changed.begin(), changed.end(), p.second)) {
+        ++expected;
+        CHECK(std::binary_search(near.begin(), near.end(), p));
+      }
+    CHECK(expected > 0);
+    for(const Pair& p : near) CHECK(std::binary_search(all.begin(), all.end(), p));
+  }
+
+  // moves: vertices of the flat grid near the standing one lifted through it or beside it
+  const Mesh flat = square(4);
+  const Context context(flat, PR::detect_features(flat));
+  std::vector<std::pair<V, Point>> from;
+  for(V v : vertices(m)) {
+    const Point p = m.point(v);
+    if(p.z() != 0 || std::abs(p.x() - 0.5) > 0.1 || p.y() < 0.2 || p.y() > 0.8) continue;
+    from.push_back({v, p});
+    m.point(v) = Point(p.x() + (p.x() < 0.53 ? 0.06 : 0.01), p.y(), 0.02 * std::sin(7 * p.y()));
+  }
+  REQUIRE(from.size() >= 4);
+  std::sort(from.begin(), from.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<V> movers;
+  for(const auto& x : from) movers.push_back(x.first);
+  const auto changed = PR::internal::faces_around(m, movers);
+  std::vector<V> local, reference;
+  const Mesh moved = m;
+  context.for_vertices_of_new_intersections_after_moves(m, from, changed, [&](V x) { local.push_back(x); });
+  // (the moves were put back and forth: the mesh is as it was)
+  for(V v : vertices(m)) CHECK(m.point(v) == moved.point(v));
+  context.for_vertices_of_new_intersections(m, all, changed, [&](V x) { reference.push_back(x); });
+  for(auto* list : {&local, &reference}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  CHECK(!reference.empty());
+  CHECK(local == reference);
+}

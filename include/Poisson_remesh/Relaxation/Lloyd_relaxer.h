@@ -167,6 +167,8 @@ public:
     constexpr bool may_add = !std::is_same<NewVertex, No_new_vertex>::value;
     const Context& ctx = context_;
     Relaxation_statistics stats;
+    internal::Step_clock clock;   // (each step's time: stats.seconds)
+    Relaxation_times& T = stats.seconds;
     std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity insertions stay where they are put
     auto is_fixed = [&](vertex_descriptor v) { return is_corner(v) || std::binary_search(pinned.begin(), pinned.end(), v); };
     // (but near a sliver, they may move a little from there: P::optimize_pinned_vertices)
@@ -180,12 +182,14 @@ public:
 
     // the paper's steps
     auto lloyd = [&](auto fixed) {
-      Relaxation::lloyd_pass(ctx, mesh, is_feature, fixed, stats, vertex_density, area_weighted_, P::Lloyd_guard<Context>{ctx, s.lloyd_guard});
+      clock.timed(T.lloyd, [&] { Relaxation::lloyd_pass(ctx, mesh, is_feature, fixed, stats, vertex_density, area_weighted_, P::Lloyd_guard<Context>{ctx, s.lloyd_guard}); });
     };
     auto delaunay = [&](bool keep) {
-      Relaxation::delaunay_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.sliver_angle, stats, keep);
+      clock.timed(T.delaunay_flips, [&] { Relaxation::delaunay_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.sliver_angle, stats, keep); });
     };
-    auto valence = [&] { Relaxation::valence_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.valence_flip_min_angle_ratio, stats); };
+    auto valence = [&] {
+      clock.timed(T.valence_flips, [&] { Relaxation::valence_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.valence_flip_min_angle_ratio, stats); });
+    };
     auto paper_round = [&](auto fixed) {
       lloyd(fixed);
       if(s.delaunay_flips) delaunay(false);
@@ -196,27 +200,28 @@ public:
 
     // the operators beyond the paper, each a round of its own
     auto fidelity = [&]() -> std::size_t {
-      if constexpr(may_add) return tolerance > 0 ? P::insert_far_input_points(ctx, mesh, is_feature, new_vertex, s.fidelity, stats, pinned) : 0;
+      if constexpr(may_add)
+        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points(ctx, mesh, is_feature, new_vertex, s.fidelity, stats, pinned); }) : 0;
       else return 0;
     };
     auto optimize_angles = [&] {
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it) {
-        if(P::optimize_angles(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats) == 0) break;
+        if(clock.timed(T.angle_optimization, [&] { return P::optimize_angles(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats); }) == 0) break;
         final_delaunay(keep_regularity);
       }
     };
     auto refine = [&] {
       if constexpr(may_add)
         for(unsigned int round = 0; round < s.refinement.rounds; ++round) {
-          if(P::refine_sharp_triangles(ctx, mesh, is_feature, is_corner, new_vertex, s.refinement, s.sliver_angle, tolerance, stats, pinned) == 0) break;
+          if(clock.timed(T.refinement, [&] { return P::refine_sharp_triangles(ctx, mesh, is_feature, is_corner, new_vertex, s.refinement, s.sliver_angle, tolerance, stats, pinned); }) == 0) break;
           final_delaunay(keep_regularity);
           optimize_angles();
         }
     };
-    auto smooth = [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats); };
+    auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats); }); };
     auto untangle = [&](std::size_t* collapses) {
       for(unsigned int round = 0; round < s.untangling.rounds; ++round)
-        if(P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses) == 0) break;
+        if(clock.timed(T.untangling, [&] { return P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses); }) == 0) break;
     };
     auto report = [&](const char* stage, std::size_t done, std::size_t total) { if(progress_) progress_(stage, done, total); };
     const std::size_t optimization_steps = 8;   // (the reports of the steps after the Lloyd rounds)
@@ -229,8 +234,10 @@ public:
     report("optimization", 0, optimization_steps);
     std::size_t changed = 0;
     if constexpr(may_add)
-      if(s.long_edge_split.ratio > 0) changed += P::split_long_feature_edges(ctx, mesh, is_feature, new_vertex, s.long_edge_split, stats);
-    if(s.sliver_collapse.enabled) changed += P::collapse_slivers(ctx, mesh, is_feature, is_corner, s.sliver_collapse, s.sliver_angle, stats);
+      if(s.long_edge_split.ratio > 0)
+        changed += clock.timed(T.long_edge_split, [&] { return P::split_long_feature_edges(ctx, mesh, is_feature, new_vertex, s.long_edge_split, stats); });
+    if(s.sliver_collapse.enabled)
+      changed += clock.timed(T.sliver_collapse, [&] { return P::collapse_slivers(ctx, mesh, is_feature, is_corner, s.sliver_collapse, s.sliver_angle, stats); });
     changed += fidelity();
     if(changed > 0)
       for(unsigned int it = 0; it < s.rounds_after_collapse; ++it) paper_round(is_fixed);
@@ -248,7 +255,7 @@ public:
     }
     report("optimization", 3, optimization_steps);
     for(unsigned int it = 0; it < s.regularity.rounds; ++it) {
-      if(P::regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, stats) == 0) break;
+      if(clock.timed(T.regularity, [&] { return P::regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, stats); }) == 0) break;
       smooth();
     }
     report("optimization", 4, optimization_steps);
@@ -259,11 +266,12 @@ public:
     }
     report("optimization", 5, optimization_steps);
     refine();
-    P::final_regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, optimized, stats);
+    clock.timed(T.final_regularity, [&] { P::final_regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, optimized, stats); });
     report("optimization", 6, optimization_steps);
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it)
-        if(P::optimize_pinned_vertices(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_anchor) == 0) break;
+        if(clock.timed(T.pinned_optimization, [&] { return P::optimize_pinned_vertices(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_anchor); }) == 0)
+          break;
     report("optimization", 7, optimization_steps);
     std::size_t collapses = 0;
     untangle(s.untangling.collapse_min_angle > 0 ? &collapses : nullptr);

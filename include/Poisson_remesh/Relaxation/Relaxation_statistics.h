@@ -5,9 +5,80 @@
 #ifndef POISSON_REMESH_RELAXATION_RELAXATION_STATISTICS_H
 #define POISSON_REMESH_RELAXATION_RELAXATION_STATISTICS_H
 
+#include <chrono>
 #include <cstddef>
 
 namespace Poisson_remesh {
+
+/// Seconds spent in each step of `Lloyd_relaxer::relax()` (wall clock, each step's rounds summed;
+/// a step run inside another, as the Delaunay flips after an angle optimization, counts for itself
+/// alone).
+struct Relaxation_times
+{
+  /// the paper's steps
+  /// @{
+  double lloyd = 0, delaunay_flips = 0, valence_flips = 0;
+  /// @}
+  /// the operators beyond the paper (Postprocessing/)
+  /// @{
+  double long_edge_split = 0, sliver_collapse = 0, fidelity = 0, angle_smoothing = 0, regularity = 0,
+         angle_optimization = 0, refinement = 0, final_regularity = 0, pinned_optimization = 0, untangling = 0;
+  /// @}
+
+  /// calls `f(name, seconds)` for each step, in the schedule's order
+  template <class F>
+  void for_each(F f) const
+  {
+    f("lloyd", lloyd); f("delaunay_flips", delaunay_flips); f("valence_flips", valence_flips);
+    f("long_edge_split", long_edge_split); f("sliver_collapse", sliver_collapse); f("fidelity", fidelity);
+    f("angle_smoothing", angle_smoothing); f("regularity", regularity); f("angle_optimization", angle_optimization);
+    f("refinement", refinement); f("final_regularity", final_regularity); f("pinned_optimization", pinned_optimization);
+    f("untangling", untangling);
+  }
+  /// the sum over the steps
+  double total() const { double t = 0; for_each([&](const char*, double s) { t += s; }); return t; }
+  /// adds the times of `o` (the attempts of a remesh)
+  Relaxation_times& operator+=(const Relaxation_times& o)
+  {
+    double* mine[] = {&lloyd, &delaunay_flips, &valence_flips, &long_edge_split, &sliver_collapse, &fidelity, &angle_smoothing,
+                      &regularity, &angle_optimization, &refinement, &final_regularity, &pinned_optimization, &untangling};
+    std::size_t i = 0;
+    o.for_each([&](const char*, double s) { *mine[i++] += s; });
+    return *this;
+  }
+};
+
+namespace internal {
+
+// Charges the time between switches to one step at a time: timed(field, f) runs f with its time
+// going to `field`, the step that called it paused meanwhile (exclusive times: they add up to
+// the relaxation's).
+class Step_clock
+{
+  typedef std::chrono::steady_clock Clock;
+public:
+  template <class F>
+  auto timed(double& field, F f)
+  {
+    double* outer = switch_to(&field);
+    struct Back { Step_clock& c; double* outer; ~Back() { c.switch_to(outer); } } back{*this, outer};
+    return f();
+  }
+private:
+  double* switch_to(double* field)
+  {
+    const auto t = Clock::now();
+    if(current_ != nullptr) *current_ += std::chrono::duration<double>(t - since_).count();
+    since_ = t;
+    double* previous = current_;
+    current_ = field;
+    return previous;
+  }
+  double* current_ = nullptr;
+  Clock::time_point since_ = Clock::now();
+};
+
+} // namespace internal
 
 /// What `Lloyd_relaxer::relax()` did.
 struct Relaxation_statistics
@@ -24,6 +95,7 @@ struct Relaxation_statistics
   std::size_t refinement_flips = 0, refinement_removals = 0;
   /// @}
   std::size_t untangle_changes = 0;   ///< moves and flips that left fewer crossing face pairs
+  Relaxation_times seconds;   ///< the time of each step
 };
 
 } // namespace Poisson_remesh

@@ -88,25 +88,43 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const auto it = tips.find(x);
     return it == tips.end() ? 1.0 : it->second;
   };
-  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-  std::vector<std::pair<face_descriptor, face_descriptor>> before;   // intersections there already
-  if(!todo.empty()) {
-    // (only the faces around `todo` can move: around a few slivers, their neighbourhood is
-    // enough; the smoothing moves every vertex)
-    before = smoothing ? Poisson_remesh::internal::intersecting_pairs(m) : Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, todo));
-    // (a mesh that cuts itself everywhere -- folded input -- is not worth the checks)
-    if(before.size() > num_faces(m)) return 0;
-  }
   std::size_t moved = 0;
   std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
+  // the triangles around the vertex being moved, read once for its whole search (its neighbours
+  // stay where they are meanwhile): Context::smallest_angles_around() without walking the mesh
+  // for each trial point, the same figures
+  struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
+  std::vector<Ring_triangle> ring;
+  auto smallest_angles_around = [&](const Point_3& at) -> std::pair<double, double> {
+    double worst = CGAL_PI, sum = 0;
+    for(const Ring_triangle& t : ring) {
+      const Vector_3 n = ctx.normal(t.a, at, t.b);
+      const double ln = std::sqrt(CGAL::to_double(n.squared_length()));
+      // (turned over: the normal more than 60 degrees away from the current one)
+      if(!(t.ln > 0 && ln > 0) || CGAL::to_double(t.n * n) / (t.ln * ln) < 0.5) return {-1, -1};
+      const double x = t.sa == 1 && t.sb == 1 ? ctx.min_angle(t.a, at, t.b)
+                                              : std::min({ctx.angle(at, t.a, t.b) * t.sa, ctx.angle(t.a, at, t.b), ctx.angle(t.a, t.b, at) * t.sb});
+      worst = std::min(worst, x);
+      sum += x;
+    }
+    return {worst, sum};
+  };
   for(vertex_descriptor v : todo) {
     const int c = movability(v);
     const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
     const Point_3 start = get(vpm, v);
     Point_3 p = start;
-    const double floor = ctx.smallest_angles_around(v, m, p, tip_scale).first;
+    ring.clear();
+    for(auto h : CGAL::halfedges_around_target(v, m)) {
+      if(is_border(h, m)) continue;
+      Ring_triangle t{get(vpm, source(h, m)), get(vpm, target(next(h, m), m)), Vector_3(), 0, tip_scale(source(h, m)), tip_scale(target(next(h, m), m))};
+      t.n = ctx.normal(t.a, start, t.b);
+      t.ln = std::sqrt(CGAL::to_double(t.n.squared_length()));
+      ring.push_back(t);
+    }
+    const double floor = smallest_angles_around(p).first;
     auto objective = [&](const Point_3& q) {
-      const auto [smallest, sum] = ctx.smallest_angles_around(v, m, q, tip_scale);
+      const auto [smallest, sum] = smallest_angles_around(q);
       if(!smoothing || smallest < 0) return smallest;
       return smallest < floor ? -1.0 : sum;
     };
@@ -177,10 +195,16 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const auto changed = Poisson_remesh::internal::faces_around(m, movers);
     for(int round = 0; round < 8; ++round) {
       std::size_t back = 0;
-      ctx.for_vertices_of_new_intersections(m, before, changed, [&](vertex_descriptor x) {
+      const std::size_t crossing = ctx.for_vertices_of_new_intersections_after_moves(m, from, changed, [&](vertex_descriptor x) {
         auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
         if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
       });
+      // (a mesh that cuts itself everywhere -- folded input -- is left as it was: not worth the checks)
+      if(round == 0 && crossing > num_faces(m)) {
+        for(const auto& x : from) put(vpm, x.first, x.second);
+        stats.refused_moves += moved;
+        return 0;
+      }
       if(back == 0) break;
       moved -= std::min(moved, back);
       stats.refused_moves += back;

@@ -24,7 +24,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -51,6 +53,10 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 template <class Mesh>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m, faces(m)); }
 
+// up to this many changed faces, intersecting_pairs_near() tests every face's box against theirs;
+// more, it puts theirs in a grid first (either way, no sweep sorting every face's box per call)
+constexpr std::size_t few_changed_faces = 32;
+
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
 // of `changed` moved or are new. A box search of the changed faces against all faces, then
@@ -70,14 +76,66 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
   const auto n = std::size_t(std::distance(std::begin(changed), std::end(changed)));
   if(n == 0) return {};
   if(2 * n > num_faces(m)) return intersecting_pairs(m);
-  std::vector<Box> mine, all;
+  std::vector<Box> mine;
   for(face_descriptor f : changed) mine.push_back(box_of(f));
-  all.reserve(num_faces(m));
-  for(face_descriptor f : faces(m)) all.push_back(box_of(f));
-  // (each changed face meets its own box in `all`, so it is in `near` too)
+  // (each changed face meets its own box, so it is in `near` too)
   std::vector<face_descriptor> near;
-  CGAL::box_intersection_d(mine.begin(), mine.end(), all.begin(), all.end(),
-                           [&](const Box&, const Box& b) { near.push_back(b.info()); });
+  if(n <= few_changed_faces) {
+    // a few boxes: each face's box against their union, then against each (the same closed-box
+    // test as box_intersection_d's, without sorting every face's box)
+    CGAL::Bbox_3 all_mine;
+    for(const Box& b : mine) all_mine += b.bbox();
+    for(face_descriptor f : faces(m)) {
+      const CGAL::Bbox_3 b = box_of(f).bbox();
+      if(!CGAL::do_overlap(b, all_mine)) continue;
+      for(const Box& c : mine)
+        if(CGAL::do_overlap(b, c.bbox())) { near.push_back(f); break; }
+    }
+  } else {
+    // more: the changed boxes in a grid of cells as large as the largest of them (each box in 8
+    // cells at most), each face's box against those of the cells it meets
+    CGAL::Bbox_3 all_mine;
+    double cell = 0;
+    for(const Box& b : mine) {
+      all_mine += b.bbox();
+      for(int i = 0; i < 3; ++i) cell = (std::max)(cell, b.bbox().max(i) - b.bbox().min(i));
+    }
+    for(int i = 0; i < 3; ++i) cell = (std::max)(cell, 1e-9 * (all_mine.max(i) - all_mine.min(i)));
+    if(!(cell > 0)) cell = 1;
+    auto index = [&](double x, int i) { return std::int64_t(std::floor((x - all_mine.min(i)) / cell)); };
+    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) { return (std::uint64_t(x) << 42) ^ (std::uint64_t(y) << 21) ^ std::uint64_t(z); };
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+    for(std::size_t k = 0; k < mine.size(); ++k) {
+      const CGAL::Bbox_3& b = mine[k].bbox();
+      for(std::int64_t x = index(b.xmin(), 0); x <= index(b.xmax(), 0); ++x)
+        for(std::int64_t y = index(b.ymin(), 1); y <= index(b.ymax(), 1); ++y)
+          for(std::int64_t z = index(b.zmin(), 2); z <= index(b.zmax(), 2); ++z) grid[key(x, y, z)].push_back(k);
+    }
+    const std::int64_t last[3] = {index(all_mine.xmax(), 0), index(all_mine.ymax(), 1), index(all_mine.zmax(), 2)};
+    for(face_descriptor f : faces(m)) {
+      const CGAL::Bbox_3 b = box_of(f).bbox();
+      if(!CGAL::do_overlap(b, all_mine)) continue;
+      std::int64_t lo[3], hi[3], cells = 1;
+      for(int i = 0; i < 3; ++i) {
+        lo[i] = (std::max)(std::int64_t(0), index(b.min(i), i));
+        hi[i] = (std::min)(last[i], index(b.max(i), i));
+        cells *= hi[i] - lo[i] + 1;
+      }
+      bool meets = false;
+      if(cells > 64) {   // (a face much larger than the changed ones: against each of them)
+        for(const Box& c : mine) if((meets = CGAL::do_overlap(b, c.bbox()))) break;
+      } else {
+        for(std::int64_t x = lo[0]; x <= hi[0] && !meets; ++x)
+          for(std::int64_t y = lo[1]; y <= hi[1] && !meets; ++y)
+            for(std::int64_t z = lo[2]; z <= hi[2] && !meets; ++z) {
+              const auto it = grid.find(key(x, y, z));
+              if(it == grid.end()) continue;
+              for(std::size_t k : it->second) if((meets = CGAL::do_overlap(b, mine[k].bbox()))) break;
+            }
+      }
+      if(meets) near.push_back(f);
+    }
+  }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
   return intersecting_pairs(m, near);
@@ -249,6 +307,36 @@ public:
       for(auto face : {fp.first, fp.second})
         for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
     }
+  }
+
+  // The same when only vertices moved since the earlier state: `moved` lists (vertex, where it
+  // was) pairs, sorted by vertex. Which of the pairs that intersect now also did then is asked of
+  // those pairs alone, with the vertices put back for a moment: no check of the whole earlier
+  // state (most often nothing intersects now and nothing more is asked). Returns the number of
+  // pairs that intersect now near `changed`.
+  template <class Mesh, class Moved, class FaceRange, class F>
+  std::size_t for_vertices_of_new_intersections_after_moves(Mesh& m, const Moved& moved, const FaceRange& changed, F f) const
+  {
+    typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+    const auto now = internal::intersecting_pairs_near(m, changed);
+    if(now.empty()) return 0;
+    std::vector<face_descriptor> involved;
+    for(const auto& fp : now) { involved.push_back(fp.first); involved.push_back(fp.second); }
+    std::sort(involved.begin(), involved.end());
+    involved.erase(std::unique(involved.begin(), involved.end()), involved.end());
+    auto vpm = get(CGAL::vertex_point, m);
+    std::vector<Point_3> current;
+    current.reserve(moved.size());
+    for(const auto& x : moved) { current.push_back(get(vpm, x.first)); put(vpm, x.first, x.second); }
+    const auto before = internal::intersecting_pairs(m, involved);
+    for(std::size_t i = 0; i < moved.size(); ++i) put(vpm, moved[i].first, current[i]);
+    for(const auto& fp : now) {
+      if(std::binary_search(before.begin(), before.end(), fp)) continue;
+      if(near_input_crossing(fp.first, m) && near_input_crossing(fp.second, m)) continue;
+      for(auto face : {fp.first, fp.second})
+        for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
+    }
+    return now.size();
   }
 
   // whether the centroid of face f of m lies within two of f's longest edge's lengths of the
