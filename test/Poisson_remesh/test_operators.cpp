@@ -23,6 +23,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -345,6 +346,32 @@ TEST_CASE("angle optimization and smoothing: a free vertex pushed off its place 
     CHECK(sum_around(m) > sum + 10);
     CHECK(min_angle(m) >= worst);
     CHECK(no_fold_in_plane(m));
+  }
+  SECTION("rounds with a memory search only where something changed, and end where rounds without one end")
+  {
+    // every interior vertex of a 6 x 6 grid free, three of them pushed off their places
+    Mesh with = square(6);
+    for(auto [x, y, dx, dy] : {std::array<double, 4>{2, 2, 0.3, 0.1}, {4, 3, -0.2, 0.25}, {3, 4, 0.1, -0.3}})
+      with.point(vertex_at(with, x / 6, y / 6)) = Point((x + dx) / 6, (y + dy) / 6, 0);
+    Mesh without = with;
+    auto free = [](const Mesh& m) { return [&m](V x) { return is_border(x, m); }; };
+    PR::Relaxation_statistics with_stats, without_stats;
+    P::Angle_smoothing_memory<Mesh> memory;
+    std::size_t rounds = 0, moved_with = 1, moved_without = 1;
+    for(; rounds < 12 && (moved_with > 0 || moved_without > 0); ++rounds) {
+      moved_with = P::smooth_angles(context, with, no_feature, free(with), with_stats, &memory);
+      moved_without = P::smooth_angles(context, without, no_feature, free(without), without_stats);
+      CHECK(moved_with == moved_without);
+    }
+    INFO(rounds << " rounds, " << with_stats.unchanged_stars << " searches not made again");
+    CHECK(rounds >= 2);
+    CHECK(with_stats.unchanged_stars > 0);
+    CHECK(without_stats.unchanged_stars == 0);
+    for(V x : vertices(with)) CHECK(with.point(x) == without.point(x));
+    // a last round with the memory searches no vertex: every star is as its search left it
+    const std::size_t before = with_stats.unchanged_stars;
+    CHECK(P::smooth_angles(context, with, no_feature, free(with), with_stats, &memory) == 0);
+    CHECK(with_stats.unchanged_stars - before == 25);
   }
 }
 

@@ -26,13 +26,24 @@ struct Angle_smoothing_settings
   unsigned int rounds = 2;
 };
 
-/// One round of angle smoothing of `m` (the vertices for which `is_fixed` holds stay). Returns the
+/// What a smoothing round leaves for the next ones: the vertices whose search moved nothing, with
+/// a digest of their star. A vertex whose star is the same at the next round is not searched
+/// again (its search would find the same nothing): the rounds after the first, and those after
+/// the regularity flips, search where something changed. Vertices must not be added or removed
+/// between the rounds that share one.
+template <class Mesh>
+using Angle_smoothing_memory = std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>;
+
+/// One round of angle smoothing of `m` (the vertices for which `is_fixed` holds stay), with the
+/// memory of the earlier rounds (`memory`; nullptr: every movable vertex is searched). Returns the
 /// number of vertices moved.
 template <class Context, class Mesh, class IsFeatureEdge, class IsFixed>
-std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, Relaxation_statistics& stats)
+std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, Relaxation_statistics& stats,
+                          Angle_smoothing_memory<Mesh>* memory = nullptr)
 {
   // (the search's angle thresholds and pin reach serve the other goals only)
-  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats);
+  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats,
+    [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false, memory);
 }
 
 } // namespace Postprocessing

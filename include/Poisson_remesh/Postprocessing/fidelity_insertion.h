@@ -93,13 +93,14 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
   // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
   // (the input point nearest c, and its squared distance to c)
-  auto nearest_on_input = [&](const Point_3& c) {
-    const Point_3 p = ctx.project_on_surface(c);
+  // (the search starts from `hint`, a vertex of the mesh: on the input, and near c)
+  auto nearest_on_input = [&](const Point_3& c, const Point_3& hint) {
+    const Point_3 p = ctx.project_on_surface(c, hint);
     return std::make_pair(CGAL::to_double(CGAL::squared_distance(c, p)), p);
   };
   for(face_descriptor f : faces(m)) {
     const auto h = halfedge(f, m);
-    const auto [d2, p] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))));
+    const auto [d2, p] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m)));
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)
     if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
   }
@@ -109,7 +110,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   for(auto e : edges(m)) {
     const halfedge_descriptor h = halfedge(e, m);
     if(is_border_edge(h, m) || is_feature(e)) continue;
-    const auto [d2, p] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))));
+    const auto [d2, p] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m)));
     if(d2 > tol * tol) far_edges.push_back({d2, p, source(h, m), target(h, m)});
   }
   if(far.empty() && far_edges.empty()) return 0;

@@ -218,7 +218,8 @@ public:
           optimize_angles();
         }
     };
-    auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats); }); };
+    P::Angle_smoothing_memory<Mesh> smoothing_memory;   // (no vertex is added or removed between the smoothing rounds)
+    auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats, &smoothing_memory); }); };
     auto untangle = [&](std::size_t* collapses) {
       for(unsigned int round = 0; round < s.untangling.rounds; ++round)
         if(clock.timed(T.untangling, [&] { return P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses); }) == 0) break;

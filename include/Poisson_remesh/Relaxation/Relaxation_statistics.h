@@ -95,6 +95,7 @@ struct Relaxation_statistics
   std::size_t refinement_flips = 0, refinement_removals = 0;
   /// @}
   std::size_t untangle_changes = 0;   ///< moves and flips that left fewer crossing face pairs
+  std::size_t unchanged_stars = 0;   ///< smoothing searches not made again: the star as it was when its search moved nothing
   Relaxation_times seconds;   ///< the time of each step
 };
 

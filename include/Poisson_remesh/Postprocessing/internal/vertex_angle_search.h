@@ -9,6 +9,8 @@
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <set>
 #include <vector>
@@ -31,12 +33,16 @@ namespace internal {
 /// only the vertices of the fidelity insertions (fixed for is_corner) at a triangle sharper than
 /// `sliver_angle` move, by a quarter of the fidelity tolerance (`max_deviation` times the diagonal)
 /// at most from where they were put, `pin_anchor(x)` (nullptr for the others): they still hold the
-/// mesh near the input. A move that makes the mesh cut itself anew is taken back. Returns the
-/// number of vertices moved.
+/// mesh near the input. A move that makes the mesh cut itself anew is taken back. With `unmoved`
+/// (not null), the digest of each vertex's star -- its point, its ring's points, border and
+/// feature flags and tip scales, its movability -- is kept when its search moves nothing, and a
+/// vertex whose star has the same digest at the next call is not searched again: its search
+/// would find the same nothing (repeated smoothing rounds). Returns the number of vertices moved.
 template <class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
-                                PinAnchor pin_anchor, bool pinned_only)
+                                PinAnchor pin_anchor, bool pinned_only,
+                                std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr)
 {
   typedef typename Context::Point_3 Point_3;
   typedef typename Context::Vector_3 Vector_3;
@@ -109,11 +115,51 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     }
     return {worst, sum};
   };
+  auto mix = [](std::uint64_t h, double x) {   // (splitmix64 of the bits, folded into h)
+    std::uint64_t z;
+    std::memcpy(&z, &x, sizeof z);
+    z += 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return h ^ (z ^ (z >> 31));
+  };
+  auto digest_of_star = [&](vertex_descriptor v, int c) {
+    const Point_3& o = get(vpm, v);
+    std::uint64_t h = mix(mix(mix(mix(0, double(c)), CGAL::to_double(o.x())), CGAL::to_double(o.y())), CGAL::to_double(o.z()));
+    for(auto g : CGAL::halfedges_around_target(v, m)) {
+      const Point_3& a = get(vpm, source(g, m));
+      h = mix(mix(mix(h, CGAL::to_double(a.x())), CGAL::to_double(a.y())), CGAL::to_double(a.z()));
+      h = mix(h, double(int(is_border(g, m)) + 2 * int(is_feature(edge(g, m)) || is_border(edge(g, m), m))));
+      h = mix(h, tip_scale(source(g, m)));
+    }
+    return h | 1;
+  };
   for(vertex_descriptor v : todo) {
     const int c = movability(v);
     const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
     const Point_3 start = get(vpm, v);
     Point_3 p = start;
+    std::uint64_t digest = 0;
+    if(unmoved != nullptr) {
+      digest = digest_of_star(v, c);
+      const auto it = unmoved->find(v);
+      if(it != unmoved->end() && it->second == digest) { ++stats.unchanged_stars; continue; }
+    }
+    // (whichever way the search ends: remembered when it moved nothing)
+    struct Remember
+    {
+      std::map<vertex_descriptor, std::uint64_t>* unmoved;
+      vertex_descriptor v;
+      std::uint64_t digest;
+      const Point_3& start;
+      const Mesh& m;
+      ~Remember()
+      {
+        if(unmoved == nullptr) return;
+        if(get(CGAL::vertex_point, m, v) == start) (*unmoved)[v] = digest;
+        else unmoved->erase(v);
+      }
+    } remember{unmoved, v, digest, start, m};
     ring.clear();
     for(auto h : CGAL::halfedges_around_target(v, m)) {
       if(is_border(h, m)) continue;
@@ -186,6 +232,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     }
     if(p != start) { put(vpm, v, p); from.push_back({v, start}); ++moved; }
   }
+  // (a move taken back below leaves its vertex where it was, but not remembered: searched again)
   // a move may not make the mesh cut itself (thin parts): the moved vertices of triangles
   // that intersect anew go back, until no new intersection is left
   if(moved > 0) {
