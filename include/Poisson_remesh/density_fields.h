@@ -86,7 +86,7 @@ namespace internal {
 
 // One past the largest vertex index: per-vertex vectors are indexed by the vertex index map,
 // whose values are not contiguous when the mesh holds removed elements (a Surface_mesh after
-// remove_degenerate_faces(), before collect_garbage(): found by fuzzing).
+// remove_degenerate_faces(), before collect_garbage()).
 template <class TriangleMesh>
 std::size_t vertex_index_bound(const TriangleMesh& tm)
 {

@@ -442,10 +442,10 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
 }
 
 // The local self-intersection checks that every operator's take-backs rest on: the pairs near a few
-// changed faces (a box test against each, or a grid of their boxes when there are more) are those
-// of a whole-mesh check (CGAL's self_intersections, called here directly) that involve a changed
-// face; and after vertex moves, the new crossings found with only the crossing pairs put back for
-// a moment are those that a whole-mesh check of the earlier state gives.
+// changed faces (found through a grid of their boxes) are those of a whole-mesh check (CGAL's
+// self_intersections, called here directly) that involve a changed face; and after vertex moves,
+// the new crossings found with only the crossing pairs put back for a moment are those that a
+// whole-mesh check of the earlier state gives.
 TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[operators][intersections]")
 {
   // two 12 x 12 grids that cross: the unit square at z = 0 and a square standing at x = 0.53
@@ -476,7 +476,7 @@ TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[opera
   const std::vector<Pair> all = whole(m);
   REQUIRE(all.size() > 20);
   std::vector<Mesh::Face_index> fs(faces(m).begin(), faces(m).end());
-  // changed sets of 3, 20 (box tests) and 250 faces (the grid), drawn with a fixed step
+  // changed sets of 3, 20 and 250 faces, drawn with a fixed step
   for(std::size_t count : {3u, 20u, 250u}) {
     REQUIRE(2 * count <= fs.size());
     std::vector<Mesh::Face_index> changed;

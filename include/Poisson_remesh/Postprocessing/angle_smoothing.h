@@ -42,8 +42,7 @@ std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature,
                           Angle_smoothing_memory<Mesh>* memory = nullptr)
 {
   // (the search's angle thresholds and pin reach serve the other goals only)
-  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats,
-    [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false, memory);
+  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats, memory);
 }
 
 } // namespace Postprocessing

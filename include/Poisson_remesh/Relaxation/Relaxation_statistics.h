@@ -5,8 +5,10 @@
 #ifndef POISSON_REMESH_RELAXATION_RELAXATION_STATISTICS_H
 #define POISSON_REMESH_RELAXATION_RELAXATION_STATISTICS_H
 
+#include <array>
 #include <chrono>
 #include <cstddef>
+#include <utility>
 
 namespace Poisson_remesh {
 
@@ -29,22 +31,30 @@ struct Relaxation_times
   template <class F>
   void for_each(F f) const
   {
-    f("lloyd", lloyd); f("delaunay_flips", delaunay_flips); f("valence_flips", valence_flips);
-    f("long_edge_split", long_edge_split); f("sliver_collapse", sliver_collapse); f("fidelity", fidelity);
-    f("angle_smoothing", angle_smoothing); f("regularity", regularity); f("angle_optimization", angle_optimization);
-    f("refinement", refinement); f("final_regularity", final_regularity); f("pinned_optimization", pinned_optimization);
-    f("untangling", untangling);
+    for(const auto& [name, member] : steps()) f(name, this->*member);
   }
   /// the sum over the steps
   double total() const { double t = 0; for_each([&](const char*, double s) { t += s; }); return t; }
   /// adds the times of `o` (the attempts of a remesh)
   Relaxation_times& operator+=(const Relaxation_times& o)
   {
-    double* mine[] = {&lloyd, &delaunay_flips, &valence_flips, &long_edge_split, &sliver_collapse, &fidelity, &angle_smoothing,
-                      &regularity, &angle_optimization, &refinement, &final_regularity, &pinned_optimization, &untangling};
-    std::size_t i = 0;
-    o.for_each([&](const char*, double s) { *mine[i++] += s; });
+    for(const auto& step : steps()) this->*step.second += o.*step.second;
     return *this;
+  }
+
+private:
+  typedef std::pair<const char*, double Relaxation_times::*> Step;
+  static const std::array<Step, 13>& steps()
+  {
+    static const std::array<Step, 13> s = {{
+      {"lloyd", &Relaxation_times::lloyd}, {"delaunay_flips", &Relaxation_times::delaunay_flips},
+      {"valence_flips", &Relaxation_times::valence_flips}, {"long_edge_split", &Relaxation_times::long_edge_split},
+      {"sliver_collapse", &Relaxation_times::sliver_collapse}, {"fidelity", &Relaxation_times::fidelity},
+      {"angle_smoothing", &Relaxation_times::angle_smoothing}, {"regularity", &Relaxation_times::regularity},
+      {"angle_optimization", &Relaxation_times::angle_optimization}, {"refinement", &Relaxation_times::refinement},
+      {"final_regularity", &Relaxation_times::final_regularity}, {"pinned_optimization", &Relaxation_times::pinned_optimization},
+      {"untangling", &Relaxation_times::untangling}}};
+    return s;
   }
 };
 

@@ -3,7 +3,7 @@
 // Zero-area faces removed from a mesh, for the reader and the remesher alike: CGAL's
 // remove_degenerate_faces(), then the vertices a removed face left where two fans touch split
 // into one vertex per fan (duplicate_non_manifold_vertices: every face kept, the surface a
-// manifold again; found by fuzzing).
+// manifold again).
 
 #ifndef POISSON_REMESH_INTERNAL_REPAIR_DEGENERATE_FACES_H
 #define POISSON_REMESH_INTERNAL_REPAIR_DEGENERATE_FACES_H

@@ -76,8 +76,8 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
   // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
   // degrees over its angle sum (a third of the sum counts as 30), so that the neighbours raise
-  // their own angles (a cone tip of 83 degrees: its three triangles at best 27.7 degrees there,
-  // the other two angles of each then depend on the neighbours)
+  // their own angles (at a tip whose angles sum to s, k triangles have apex angles of s / k at
+  // most; their other two angles then depend on the neighbours)
   std::map<vertex_descriptor, double> tips;
   std::set<vertex_descriptor> checked;
   for(vertex_descriptor x : todo)
@@ -104,12 +104,8 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   auto smallest_angles_around = [&](const Point_3& at) -> std::pair<double, double> {
     double worst = CGAL_PI, sum = 0;
     for(const Ring_triangle& t : ring) {
-      const Vector_3 n = ctx.normal(t.a, at, t.b);
-      const double ln = std::sqrt(CGAL::to_double(n.squared_length()));
-      // (turned over: the normal more than 60 degrees away from the current one)
-      if(!(t.ln > 0 && ln > 0) || CGAL::to_double(t.n * n) / (t.ln * ln) < 0.5) return {-1, -1};
-      const double x = t.sa == 1 && t.sb == 1 ? ctx.min_angle(t.a, at, t.b)
-                                              : std::min({ctx.angle(at, t.a, t.b) * t.sa, ctx.angle(t.a, at, t.b), ctx.angle(t.a, t.b, at) * t.sb});
+      const double x = ctx.star_triangle_angle(t.a, at, t.b, t.n, t.ln, t.sa, t.sb);
+      if(x < 0) return {-1, -1};
       worst = std::min(worst, x);
       sum += x;
     }
@@ -139,27 +135,14 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
     const Point_3 start = get(vpm, v);
     Point_3 p = start;
-    std::uint64_t digest = 0;
     if(unmoved != nullptr) {
-      digest = digest_of_star(v, c);
-      const auto it = unmoved->find(v);
+      const std::uint64_t digest = digest_of_star(v, c);
+      auto it = unmoved->find(v);
       if(it != unmoved->end() && it->second == digest) { ++stats.unchanged_stars; continue; }
+      // (remembered unless the search below moves the vertex)
+      if(it == unmoved->end()) unmoved->emplace(v, digest);
+      else it->second = digest;
     }
-    // (whichever way the search ends: remembered when it moved nothing)
-    struct Remember
-    {
-      std::map<vertex_descriptor, std::uint64_t>* unmoved;
-      vertex_descriptor v;
-      std::uint64_t digest;
-      const Point_3& start;
-      const Mesh& m;
-      ~Remember()
-      {
-        if(unmoved == nullptr) return;
-        if(get(CGAL::vertex_point, m, v) == start) (*unmoved)[v] = digest;
-        else unmoved->erase(v);
-      }
-    } remember{unmoved, v, digest, start, m};
     ring.clear();
     for(auto h : CGAL::halfedges_around_target(v, m)) {
       if(is_border(h, m)) continue;
@@ -207,8 +190,8 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       for(int k = 0; k < 8; ++k) dirs.push_back(std::cos(k * CGAL_PI / 4) * u + std::sin(k * CGAL_PI / 4) * w);
     }
     if(dirs.empty()) continue;
-    // (at most 40 steps: gains that never stop, however small -- a flat double-sided sheet
-    // found by fuzzing -- kept the step from shrinking)
+    // (a bounded number of steps: where gains never stop, however small -- a flat sheet folded
+    // onto itself -- the step would never shrink)
     const bool in_plane = smoothing && c == 0;
     double step = (smoothing ? 0.1 : 0.2) * mean;
     for(int iteration = 0; iteration < (smoothing ? 10 : 40) && step > 0.01 * mean; ++iteration) {
@@ -230,9 +213,13 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       p = ctx.project_on_surface(p, start);
       if(!(objective(p) > objective(start))) p = start;
     }
-    if(p != start) { put(vpm, v, p); from.push_back({v, start}); ++moved; }
+    if(p != start) {
+      put(vpm, v, p);
+      from.push_back({v, start});
+      ++moved;
+      if(unmoved != nullptr) unmoved->erase(v);   // (taken back below or not: searched again)
+    }
   }
-  // (a move taken back below leaves its vertex where it was, but not remembered: searched again)
   // a move may not make the mesh cut itself (thin parts): the moved vertices of triangles
   // that intersect anew go back, until no new intersection is left
   if(moved > 0) {
@@ -264,10 +251,12 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
 /// The same without pinned vertices.
 template <class Context, class Mesh, class IsFeatureEdge, class IsCorner>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
-                                double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats)
+                                double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
+                                std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr)
 {
   return vertex_angle_search(ctx, m, is_feature, is_corner, goal, optimized_angle, sliver_angle, max_deviation, stats,
-                             [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false);
+                             [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false,
+                             unmoved);
 }
 
 } // namespace internal

@@ -53,10 +53,6 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 template <class Mesh>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m, faces(m)); }
 
-// up to this many changed faces, intersecting_pairs_near() tests every face's box against theirs;
-// more, it puts theirs in a grid first (either way, no sweep sorting every face's box per call)
-constexpr std::size_t few_changed_faces = 32;
-
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
 // of `changed` moved or are new. A box search of the changed faces against all faces, then
@@ -80,20 +76,10 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
   for(face_descriptor f : changed) mine.push_back(box_of(f));
   // (each changed face meets its own box, so it is in `near` too)
   std::vector<face_descriptor> near;
-  if(n <= few_changed_faces) {
-    // a few boxes: each face's box against their union, then against each (the same closed-box
-    // test as box_intersection_d's, without sorting every face's box)
-    CGAL::Bbox_3 all_mine;
-    for(const Box& b : mine) all_mine += b.bbox();
-    for(face_descriptor f : faces(m)) {
-      const CGAL::Bbox_3 b = box_of(f).bbox();
-      if(!CGAL::do_overlap(b, all_mine)) continue;
-      for(const Box& c : mine)
-        if(CGAL::do_overlap(b, c.bbox())) { near.push_back(f); break; }
-    }
-  } else {
-    // more: the changed boxes in a grid of cells as large as the largest of them (each box in 8
-    // cells at most), each face's box against those of the cells it meets
+  {
+    // the changed boxes in a grid of cells as large as the largest of them (each box in 8 cells
+    // at most), each face's box against those of the cells it meets (the same closed-box test as
+    // box_intersection_d's, without its sweep sorting every face's box at each call)
     CGAL::Bbox_3 all_mine;
     double cell = 0;
     for(const Box& b : mine) {
@@ -301,12 +287,7 @@ public:
   template <class Mesh, class Pairs, class FaceRange, class F>
   void for_vertices_of_new_intersections(const Mesh& m, const Pairs& before, const FaceRange& changed, F f) const
   {
-    for(const auto& fp : internal::intersecting_pairs_near(m, changed)) {
-      if(std::binary_search(before.begin(), before.end(), fp)) continue;
-      if(near_input_crossing(fp.first, m) && near_input_crossing(fp.second, m)) continue;
-      for(auto face : {fp.first, fp.second})
-        for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
-    }
+    for_vertices_of_pairs_not_in(m, internal::intersecting_pairs_near(m, changed), before, f);
   }
 
   // The same when only vertices moved since the earlier state: `moved` lists (vertex, where it
@@ -330,13 +311,21 @@ public:
     for(const auto& x : moved) { current.push_back(get(vpm, x.first)); put(vpm, x.first, x.second); }
     const auto before = internal::intersecting_pairs(m, involved);
     for(std::size_t i = 0; i < moved.size(); ++i) put(vpm, moved[i].first, current[i]);
+    for_vertices_of_pairs_not_in(m, now, before, f);
+    return now.size();
+  }
+
+  // calls f(x) for each vertex of the pairs of `now` that are not in `before` (sorted) and not
+  // near the input's own crossings
+  template <class Mesh, class Pairs, class F>
+  void for_vertices_of_pairs_not_in(const Mesh& m, const Pairs& now, const Pairs& before, F f) const
+  {
     for(const auto& fp : now) {
       if(std::binary_search(before.begin(), before.end(), fp)) continue;
       if(near_input_crossing(fp.first, m) && near_input_crossing(fp.second, m)) continue;
       for(auto face : {fp.first, fp.second})
         for(auto x : CGAL::vertices_around_face(halfedge(face, m), m)) f(x);
     }
-    return now.size();
   }
 
   // whether the centroid of face f of m lies within two of f's longest edge's lengths of the
@@ -391,14 +380,25 @@ public:
       if(is_border(h, m)) continue;
       const Point_3& a = get(vpm, source(h, m));
       const Point_3& b = get(vpm, target(next(h, m), m));
-      if(cos_between(normal(a, get(vpm, v), b), normal(a, at, b)) < 0.5) return {-1, -1};
-      const double sa = tip_scale(source(h, m)), sb = tip_scale(target(next(h, m), m));
-      const double x = sa == 1 && sb == 1 ? min_angle(a, at, b)
-                                          : std::min({angle(at, a, b) * sa, angle(a, at, b), angle(a, b, at) * sb});
+      const Vector_3 n = normal(a, get(vpm, v), b);
+      const double x = star_triangle_angle(a, at, b, n, std::sqrt(CGAL::to_double(n.squared_length())),
+                                           tip_scale(source(h, m)), tip_scale(target(next(h, m), m)));
+      if(x < 0) return {-1, -1};
       worst = std::min(worst, x);
       sum += x;
     }
     return {worst, sum};
+  }
+  // the smallest angle of the star triangle (a, at, b), its angles at a and b scaled by sa and
+  // sb; -1 when it turns over: its normal more than 60 degrees away from `n` (the triangle's
+  // current normal, of length `ln`)
+  static double star_triangle_angle(const Point_3& a, const Point_3& at, const Point_3& b, const Vector_3& n, double ln,
+                                    double sa, double sb)
+  {
+    const Vector_3 now = normal(a, at, b);
+    const double lnow = std::sqrt(CGAL::to_double(now.squared_length()));
+    if(!(ln > 0 && lnow > 0) || CGAL::to_double(n * now) / (ln * lnow) < 0.5) return -1;
+    return sa == 1 && sb == 1 ? min_angle(a, at, b) : std::min({angle(at, a, b) * sa, angle(a, at, b), angle(a, b, at) * sb});
   }
 
   // what a vertex may do: 2 fixed (a corner, or where features meet), 1 slide on a feature, 0 free

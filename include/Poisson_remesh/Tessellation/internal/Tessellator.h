@@ -669,8 +669,8 @@ public:
       CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm)
                                                             .maximum_number(unsigned(2 * num_faces(tm) + 1)));
       if(pairs.empty()) break;
-      // a surface that cuts itself everywhere (input faces folded onto each other, found by
-      // fuzzing) has more crossings than flips can mend, at a cost quadratic in them: left alone
+      // a surface that cuts itself everywhere (input faces folded onto each other) has more
+      // crossings than flips can mend, at a cost quadratic in them: left alone
       if(pairs.size() > 2 * num_faces(tm)) break;
       std::vector<face_descriptor> involved;
       // each face with the faces it crosses (the crossings a flip is judged by: counting against
