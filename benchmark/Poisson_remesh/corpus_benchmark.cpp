@@ -142,7 +142,6 @@ static std::vector<Operator> operators()
   typedef PR::Relaxation_settings S;
   return {
     {"lloyd_guard", "Lloyd moves that would make a sharp triangle go half way or not", [](S& s, bool&, unsigned&) { s.lloyd_guard.min_angle = 0; }},
-    {"long_edge_split", "long feature edges split", [](S& s, bool&, unsigned&) { s.long_edge_split.ratio = 0; }},
     {"sliver_collapse", "short edges of slivers collapsed", [](S& s, bool&, unsigned&) { s.sliver_collapse.enabled = false; }},
     {"fidelity", "input points far from the mesh inserted", [](S& s, bool&, unsigned&) { s.fidelity.max_deviation = 0; }},
     {"angle_smoothing", "pattern search for the sum of smallest angles", [](S& s, bool&, unsigned&) { s.angle_smoothing.rounds = 0; }},

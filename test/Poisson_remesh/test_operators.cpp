@@ -150,7 +150,6 @@ PR::Relaxation_settings nothing_but_the_last_lloyd_pass()
   s.iterations = 0;
   s.delaunay_flips = s.valence_flips = false;
   s.lloyd_guard.min_angle = 0;
-  s.long_edge_split.ratio = 0;
   s.sliver_collapse.enabled = false;
   s.fidelity.max_deviation = 0;
   s.angle_smoothing.rounds = 0;
@@ -202,56 +201,6 @@ TEST_CASE("sliver collapse: a sliver between two pinned vertices closer than the
     } else {
       CHECK(stats.collapses == 0);
       CHECK(count_below(m, 30) == slivers);
-    }
-  }
-}
-
-TEST_CASE("long-edge split: a border edge three times its neighbours' length is split on the border", "[operators][split]")
-{
-  const Mesh in = square(24);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
-  for(bool on : {false, true}) {
-    INFO("long-edge split " << (on ? "on" : "off"));
-    Mesh m = square(6);
-    // the border vertices at x = 3/6 and 4/6 collapsed into their border neighbour at 2/6: one
-    // border edge of length 3/6 between edges of 1/6
-    const V a = vertex_at(m, 2.0 / 6, 0);
-    for(double x : {3.0 / 6, 4.0 / 6}) {
-      auto h = halfedge(vertex_at(m, x, 0), a, m);
-      REQUIRE(h.second);
-      const Point keep = m.point(a);
-      const V kept = CGAL::Euler::collapse_edge(edge(h.first, m), m);
-      REQUIRE(kept == a);
-      m.point(kept) = keep;
-    }
-    m.collect_garbage();
-    REQUIRE(no_fold_in_plane(m));
-    auto longest_border = [](const Mesh& x) {
-      double l = 0;
-      for(auto e : edges(x))
-        if(is_border(e, x)) l = std::max(l, std::sqrt(CGAL::squared_distance(x.point(source(halfedge(e, x), x)), x.point(target(halfedge(e, x), x)))));
-      return l;
-    };
-    REQUIRE(longest_border(m) == Approx(3.0 / 6));
-    const long chi = euler_characteristic(m);
-    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
-    if(on) s.long_edge_split.ratio = 1.6;
-    std::vector<std::pair<V, bool>> added;
-    relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
-    CHECK(euler_characteristic(m) == chi);
-    CHECK(border_cycles(m) == 1);
-    CHECK(no_fold_in_plane(m));
-    if(on) {
-      REQUIRE(added.size() == 1);
-      CHECK(added[0].second);   // a feature (border) vertex
-      const Point p = m.point(added[0].first);
-      CHECK(std::abs(p.y()) < 1e-12);   // on the border
-      CHECK(p.x() == Approx(3.5 / 6).margin(1e-9));   // its midpoint
-      CHECK(longest_border(m) == Approx(1.5 / 6));
-    } else {
-      CHECK(added.empty());
-      CHECK(longest_border(m) == Approx(3.0 / 6));
     }
   }
 }

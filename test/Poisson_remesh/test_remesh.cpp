@@ -467,7 +467,6 @@ TEST_CASE("the relaxer's untangling removes a crossing made by a vertex pushed t
   s.iterations = 0;
   s.sliver_collapse.enabled = false;
   s.fidelity.max_deviation = 0;
-  s.long_edge_split.ratio = 0;
   s.angle_smoothing.rounds = s.regularity.rounds = s.angle_optimization.rounds = s.refinement.rounds = 0;
   s.delaunay_flips = false;
   for(unsigned int rounds : {0u, 3u}) {

@@ -6,7 +6,6 @@
 // valence_flips.h) -- for `iterations` rounds, then the operators beyond the paper, one header
 // each in Postprocessing/, each with its own settings in Relaxation_settings:
 //   - Lloyd guard (lloyd_guard.h): Lloyd moves that would make a sharp triangle go half way or not;
-//   - long feature edges split (long_edge_split.h);
 //   - sliver collapse (sliver_collapse.h);
 //   - fidelity insertions (fidelity_insertion.h): input points far from the mesh inserted, pinned;
 //   - angle smoothing (angle_smoothing.h) and angle optimization (angle_optimization.h);
@@ -27,7 +26,6 @@
 #include <Poisson_remesh/Relaxation/delaunay_flips.h>
 #include <Poisson_remesh/Relaxation/valence_flips.h>
 #include <Poisson_remesh/Postprocessing/lloyd_guard.h>
-#include <Poisson_remesh/Postprocessing/long_edge_split.h>
 #include <Poisson_remesh/Postprocessing/sliver_collapse.h>
 #include <Poisson_remesh/Postprocessing/fidelity_insertion.h>
 #include <Poisson_remesh/Postprocessing/angle_smoothing.h>
@@ -63,13 +61,12 @@ struct Relaxation_settings
   bool final_delaunay = true;              ///< Delaunay flips after the passes beyond the paper too
   /// a triangle with a smaller angle is a sliver: the target of the operators beyond the paper
   double sliver_angle = 30;
-  /// relaxation rounds after the long-edge splits, sliver collapses and fidelity insertions
+  /// relaxation rounds after the sliver collapses and fidelity insertions
   unsigned int rounds_after_collapse = 3;
 
   /// the operators beyond the paper
   /// @{
   Postprocessing::Lloyd_guard_settings lloyd_guard;
-  Postprocessing::Long_edge_split_settings long_edge_split;
   Postprocessing::Sliver_collapse_settings sliver_collapse;
   Postprocessing::Fidelity_settings fidelity;
   Postprocessing::Angle_smoothing_settings angle_smoothing;
@@ -131,7 +128,7 @@ public:
   /// It may throw to stop the relaxation (the mesh is then valid but not finished).
   void set_progress(std::function<void(const char*, std::size_t, std::size_t)> progress) { progress_ = std::move(progress); }
 
-  /// The `new_vertex` callback of the short relax(): no vertex may be added (no splits,
+  /// The `new_vertex` callback of the short relax(): no vertex may be added (no fidelity
   /// insertions or refinement).
   struct No_new_vertex
   {
@@ -140,10 +137,10 @@ public:
     static constexpr bool splits = false;   ///< no vertex may be added
   };
 
-  /// As above; `new_vertex(v, on_feature)` is called for each vertex the long-edge splits add
+  /// As above; `new_vertex(v, on_feature)` is called for each vertex the fidelity insertions and refinement add
   /// (on_feature: a feature vertex between two feature or corner vertices, on the input's
   /// features; else a free vertex on the input surface), so that the caller's `is_feature` and
-  /// `is_corner` know it. Without it, no edge is split.
+  /// `is_corner` know it. Without it, no vertex is added.
   template <class Mesh, class IsFeatureEdge, class IsCorner, class NewVertex>
   Relaxation_statistics relax(Mesh& mesh, IsFeatureEdge is_feature, IsCorner is_corner, const Relaxation_settings& s,
                               NewVertex new_vertex) const
@@ -234,9 +231,6 @@ public:
     }
     report("optimization", 0, optimization_steps);
     std::size_t changed = 0;
-    if constexpr(may_add)
-      if(s.long_edge_split.ratio > 0)
-        changed += clock.timed(T.long_edge_split, [&] { return P::split_long_feature_edges(ctx, mesh, is_feature, new_vertex, s.long_edge_split, stats); });
     if(s.sliver_collapse.enabled)
       changed += clock.timed(T.sliver_collapse, [&] { return P::collapse_slivers(ctx, mesh, is_feature, is_corner, s.sliver_collapse, s.sliver_angle, stats); });
     changed += fidelity();

@@ -23,7 +23,7 @@ struct Relaxation_times
   /// @}
   /// the operators beyond the paper (Postprocessing/)
   /// @{
-  double long_edge_split = 0, sliver_collapse = 0, fidelity = 0, angle_smoothing = 0, regularity = 0,
+  double sliver_collapse = 0, fidelity = 0, angle_smoothing = 0, regularity = 0,
          angle_optimization = 0, refinement = 0, final_regularity = 0, pinned_optimization = 0, untangling = 0;
   /// @}
 
@@ -44,11 +44,11 @@ struct Relaxation_times
 
 private:
   typedef std::pair<const char*, double Relaxation_times::*> Step;
-  static const std::array<Step, 13>& steps()
+  static const std::array<Step, 12>& steps()
   {
-    static const std::array<Step, 13> s = {{
+    static const std::array<Step, 12> s = {{
       {"lloyd", &Relaxation_times::lloyd}, {"delaunay_flips", &Relaxation_times::delaunay_flips},
-      {"valence_flips", &Relaxation_times::valence_flips}, {"long_edge_split", &Relaxation_times::long_edge_split},
+      {"valence_flips", &Relaxation_times::valence_flips},
       {"sliver_collapse", &Relaxation_times::sliver_collapse}, {"fidelity", &Relaxation_times::fidelity},
       {"angle_smoothing", &Relaxation_times::angle_smoothing}, {"regularity", &Relaxation_times::regularity},
       {"angle_optimization", &Relaxation_times::angle_optimization}, {"refinement", &Relaxation_times::refinement},
@@ -93,9 +93,9 @@ private:
 /// What `Lloyd_relaxer::relax()` did.
 struct Relaxation_statistics
 {
-  /// Lloyd moves made and refused, Delaunay and valence flips, sliver collapses, long-edge splits
+  /// Lloyd moves made and refused, Delaunay and valence flips, sliver collapses
   /// @{
-  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0, splits = 0;
+  std::size_t moves = 0, refused_moves = 0, delaunay_flips = 0, valence_flips = 0, collapses = 0;
   /// @}
   std::size_t angle_moves = 0;   ///< moves of the final angle optimization
   std::size_t fidelity_insertions = 0;   ///< input vertices inserted where the mesh cut across the input
