@@ -124,9 +124,9 @@ void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& 
         const double e = 1e-7;
         const std::array<double, 2> p0 = a.point_2(std::max(0.0, t - e)), p1 = a.point_2(std::min(1.0, t + e));
         const double tx = p1[0] - p0[0], ty = p1[1] - p0[1];
-        const double dx = p[0] - b.center[0], dy = p[1] - b.center[1], d = std::hypot(dx, dy);
+        const double dx = p[0] - b.center[0], dy = p[1] - b.center[1], d = std::sqrt(dx * dx + dy * dy);
         const double gx = (d > 0 ? dx / d : 0) - b.gradient[0], gy = (d > 0 ? dy / d : 0) - b.gradient[1];
-        const double norms = std::hypot(tx, ty) * std::hypot(gx, gy);
+        const double norms = std::sqrt((tx * tx + ty * ty) * (gx * gx + gy * gy));
         const double sine = norms > 0 ? std::abs(tx * gx + ty * gy) / norms : 0;
         out.push_back({t, f0 >= 0, sine > 1e-6});   // from outside b (f > 0) to inside: entering
       }
@@ -136,10 +136,16 @@ void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& 
   }
 }
 
+/// Where arcs `a` and `b` meet: the crossings seen from `a` (its parameter; entering: into b's
+/// disk) go to `on_a`, the same points seen from `b` to `on_b` (either may be null).
 template <class Arc>
-void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
+void arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>* on_a, std::vector<Arc_crossing>* on_b)
 {
-  if(a.is_conic() || b.is_conic()) { conic_arc_crossings(a, b, out); return; }
+  if(a.is_conic() || b.is_conic()) {
+    if(on_a) conic_arc_crossings(a, b, *on_a);
+    if(on_b) conic_arc_crossings(b, a, *on_b);
+    return;
+  }
   const double dx = b.center[0] - a.center[0], dy = b.center[1] - a.center[1];
   const double d2 = dx * dx + dy * dy, d = std::sqrt(d2);
   const double ra = a.radius, rb = b.radius;
@@ -149,31 +155,29 @@ void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>&
   const double ux = dx / d, uy = dy / d;
   const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start;
   const double tol = 1e-12;
+  // the parameter on an arc of the angle `delta` past its start, or -1 when the point is not on it
+  auto parameter = [tol](double delta, double span) {
+    delta -= two_pi * std::floor(delta / two_pi);
+    if(delta > span + tol && delta < two_pi - tol) return -1.0;
+    return (delta > span + tol) ? 0.0 : (span > 0 ? std::min(1.0, delta / span) : 0.0);
+  };
   for(int sgn : {-1, 1}) {
     const double px = a.center[0] + x * ux - sgn * h * uy, py = a.center[1] + x * uy + sgn * h * ux;
-    double da = std::atan2(py - a.center[1], px - a.center[0]) - a.theta_start;
-    da -= two_pi * std::floor(da / two_pi);
-    double db = std::atan2(py - b.center[1], px - b.center[0]) - b.theta_start;
-    db -= two_pi * std::floor(db / two_pi);
-    if(db > span_b + tol && db < two_pi - tol) continue;   // not on b
-    if(da > span_a + tol && da < two_pi - tol) continue;   // not on a
-    const double t = (da > span_a + tol) ? 0.0 : (span_a > 0 ? std::min(1.0, da / span_a) : 0.0);
-    // forward directions (counter-clockwise tangents) of a and b at the crossing
-    const double ta_x = -(py - a.center[1]), ta_y = px - a.center[0];
-    const double tb_x = -(py - b.center[1]), tb_y = px - b.center[0];
-    const double cross = tb_x * ta_y - tb_y * ta_x;   // > 0: a turns to b's left, into b's disk
-    const double sine = cross / (ra * rb);
-    out.push_back({t, cross > 0, std::abs(sine) > 1e-6});
+    const double tb = parameter(std::atan2(py - b.center[1], px - b.center[0]) - b.theta_start, span_b);
+    if(tb >= 0) {
+      const double ta = parameter(std::atan2(py - a.center[1], px - a.center[0]) - a.theta_start, span_a);
+      if(ta >= 0) {
+        // forward directions (counter-clockwise tangents) of a and b at the crossing
+        const double ta_x = -(py - a.center[1]), ta_y = px - a.center[0];
+        const double tb_x = -(py - b.center[1]), tb_y = px - b.center[0];
+        const double cross = tb_x * ta_y - tb_y * ta_x;   // > 0: a turns to b's left, into b's disk
+        const bool reliable = std::abs(cross / (ra * rb)) > 1e-6;
+        if(on_a) on_a->push_back({ta, cross > 0, reliable});
+        if(on_b) on_b->push_back({tb, cross < 0, reliable});
+      }
+    }
     if(h == 0) break;
   }
-}
-
-template <class Arc>
-void circle_arc_crossings(const Arc& a, const Arc& b, std::vector<double>& out)
-{
-  std::vector<Arc_crossing> c;
-  circle_arc_crossings(a, b, c);
-  for(const Arc_crossing& x : c) out.push_back(x.t);
 }
 
 /// Arc `a` restricted to parameters [t0, t1].
@@ -291,24 +295,29 @@ public:
               InNewDisk in_new_disk, InOldDisks in_old_disks)
   {
     // crossings of the new arcs with the stored arcs, face by face (§4.2.3: arcs only meet inside
-    // a common triangle)
-    std::vector<std::pair<std::size_t, std::vector<double>>> stored_cuts;
-    std::vector<std::vector<std::vector<internal::Arc_crossing>>> new_cuts(chains.size());
-    for(std::size_t c = 0; c < chains.size(); ++c) {
-      const auto& arcs = chains[c].arcs;
-      new_cuts[c].resize(arcs.size());
-      for(std::size_t j = 0; j < arcs.size(); ++j)
-        for(std::size_t i : arcs_in_face_[get(fim_, arcs[j].face)]) {
-          std::vector<double> ti;
-          internal::circle_arc_crossings(stored(i).arc, arcs[j], ti);
-          internal::circle_arc_crossings(arcs[j], stored(i).arc, new_cuts[c][j]);
-          if(!ti.empty()) stored_cuts.emplace_back(i, std::move(ti));
+    // a common triangle); (stored arc, parameter) pairs, and per new arc its crossings
+    // (the buffers are members, kept to reuse their storage)
+    std::vector<std::pair<std::size_t, double>>& stored_cuts = stored_cuts_;
+    stored_cuts.clear();
+    std::size_t new_arcs = 0;
+    for(const auto& chain : chains) new_arcs += chain.arcs.size();
+    if(new_cuts_.size() < new_arcs) new_cuts_.resize(new_arcs);
+    std::size_t slot = 0;
+    for(const auto& chain : chains)
+      for(const Arc& arc : chain.arcs) {
+        auto& mine = new_cuts_[slot++];
+        mine.clear();
+        for(std::size_t i : arcs_in_face_[get(fim_, arc.face)]) {
+          stored_crossings_.clear();
+          internal::arc_crossings(arc, stored(i).arc, &mine, &stored_crossings_);
+          for(const internal::Arc_crossing& x : stored_crossings_) stored_cuts.emplace_back(i, x.t);
         }
-    }
-    std::sort(stored_cuts.begin(), stored_cuts.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+      }
+    std::stable_sort(stored_cuts.begin(), stored_cuts.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     // 1. stored arcs in the faces the new disk meets: drop what it covers
-    std::vector<std::size_t> candidates;
+    std::vector<std::size_t>& candidates = candidates_;
+    candidates.clear();
     for(face_descriptor f : faces) {
       const auto& list = arcs_in_face_[get(fim_, f)];
       candidates.insert(candidates.end(), list.begin(), list.end());
@@ -316,15 +325,19 @@ public:
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     std::size_t k = 0;
+    std::vector<double>& cuts = cuts_;
     for(std::size_t i : candidates) {
-      std::vector<double> cuts;
+      cuts.clear();
       while(k < stored_cuts.size() && stored_cuts[k].first < i) ++k;
-      for(std::size_t l = k; l < stored_cuts.size() && stored_cuts[l].first == i; ++l)
-        cuts.insert(cuts.end(), stored_cuts[l].second.begin(), stored_cuts[l].second.end());
+      for(std::size_t l = k; l < stored_cuts.size() && stored_cuts[l].first == i; ++l) cuts.push_back(stored_cuts[l].second);
       if(alive_[i]) replace_by_kept_pieces(i, cuts, [&](const Face_location& loc) { return !in_new_disk(loc); });
     }
     // 2. new chains: keep what no earlier disk covers, run by run
-    for(std::size_t c = 0; c < chains.size(); ++c) add_uncovered_runs(chains[c], new_cuts[c], sample, in_old_disks);
+    slot = 0;
+    for(const auto& chain : chains) {
+      add_uncovered_runs(chain, &new_cuts_[slot], sample, in_old_disks);
+      slot += chain.arcs.size();
+    }
   }
 
   /// the surface point at parameter `t` in [0, 1] along the arc `a`
@@ -356,12 +369,14 @@ private:
   };
 
   template <class Chain, class InOldDisks>
-  void add_uncovered_runs(const Chain& chain, std::vector<std::vector<internal::Arc_crossing>>& cuts,
+  void add_uncovered_runs(const Chain& chain, std::vector<internal::Arc_crossing>* cuts,
                           std::size_t sample, InOldDisks in_old_disks)
   {
     // pieces in chain order, with the crossings that bound them
-    std::vector<Piece> pieces;
-    std::vector<internal::Arc_crossing> crossings;
+    std::vector<Piece>& pieces = run_pieces_;
+    std::vector<internal::Arc_crossing>& crossings = crossings_;
+    pieces.clear();
+    crossings.clear();
     for(std::size_t j = 0; j < chain.arcs.size(); ++j) {
       auto& cj = cuts[j];
       std::sort(cj.begin(), cj.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
@@ -393,7 +408,7 @@ private:
     }
     std::size_t i = first;
     std::size_t done = 0;
-    std::vector<std::size_t> run;
+    std::vector<std::size_t>& run = run_;
     while(done < n) {
       run.assign(1, i);
       std::size_t l = i;
@@ -481,10 +496,12 @@ private:
   template <class Keep>
   void replace_by_kept_pieces(std::size_t i, std::vector<double>& cuts, Keep keep)
   {
-    std::vector<Arc> pieces;
+    std::vector<Arc>& pieces = split_pieces_;
+    pieces.clear();
     const Arc a = stored(i).arc;
     split(a, cuts, pieces);
-    std::vector<char> kept(pieces.size());
+    std::vector<char>& kept = kept_;
+    kept.assign(pieces.size(), 0);
     bool all = true;
     for(std::size_t k = 0; k < pieces.size(); ++k) {
       kept[k] = pieces[k].length() >= min_length_ && keep(location(pieces[k], 0.5));
@@ -515,6 +532,15 @@ private:
   internal::Fenwick_tree fenwick_;
   std::size_t alive_count_ = 0;
   double min_length_ = 0;
+  // the update's buffers (members only to reuse their storage from one update to the next)
+  std::vector<std::pair<std::size_t, double>> stored_cuts_;
+  std::vector<std::vector<internal::Arc_crossing>> new_cuts_;
+  std::vector<internal::Arc_crossing> crossings_, stored_crossings_;
+  std::vector<std::size_t> candidates_, run_;
+  std::vector<double> cuts_;
+  std::vector<Piece> run_pieces_;
+  std::vector<Arc> split_pieces_;
+  std::vector<char> kept_;
   std::size_t by_crossings_ = 0, by_distance_ = 0;
 };
 

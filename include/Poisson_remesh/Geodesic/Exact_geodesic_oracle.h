@@ -353,11 +353,11 @@ private:
   static double window_min_distance(const Window& w)
   {
     const double x = (std::min)((std::max)(w.sx, w.b0), w.b1);
-    return w.sigma + std::hypot(x - w.sx, w.sy);
+    return w.sigma + std::sqrt((x - w.sx) * (x - w.sx) + w.sy * w.sy);
   }
   static double window_max_distance(const Window& w)
   {
-    return w.sigma + (std::max)(std::hypot(w.b0 - w.sx, w.sy), std::hypot(w.b1 - w.sx, w.sy));
+    return w.sigma + std::sqrt((std::max)((w.b0 - w.sx) * (w.b0 - w.sx), (w.b1 - w.sx) * (w.b1 - w.sx)) + w.sy * w.sy);
   }
 
   /// Windows created by the source: vertex source = pseudo-source of distance 0;
@@ -555,15 +555,22 @@ private:
     const double L = m.edge_length(s);
     const int vA = m.fv[s], vB = m.fv[3 * f + (k + 1) % 3], vC = m.fv[3 * f + (k + 2) % 3];
     const Vec2 C = m.apex[s];
-    subtract_dominated(Dw, internal::Edge_distance_function{0., 0., m_dist[vA]}, w.b0, w.b1, pieces);
-    subtract_dominated(Dw, internal::Edge_distance_function{L, 0., m_dist[vB]}, w.b0, w.b1, pieces);
-    subtract_dominated(Dw, internal::Edge_distance_function{C.x, C.y * C.y, m_dist[vC]}, w.b0, w.b1, pieces);
+    // a vertex can take a part of the window only where it is closer by more than the tolerance;
+    // it cannot when even its nearest point of the edge line is not closer than the window's
+    // farthest point (the window's distance is convex along the edge: largest at an end)
+    const double farthest = (std::max)(Dw(w.b0), Dw(w.b1)) - m_tol;
+    auto subtract = [&](const internal::Edge_distance_function& vertex) {
+      if(vertex.sigma + std::sqrt(vertex.sy2) < farthest) subtract_dominated(Dw, vertex, w.b0, w.b1, pieces);
+    };
+    subtract(internal::Edge_distance_function{0., 0., m_dist[vA]});
+    subtract(internal::Edge_distance_function{L, 0., m_dist[vB]});
+    subtract(internal::Edge_distance_function{C.x, C.y * C.y, m_dist[vC]});
     const int t = m.fadj[s];
     if(t >= 0)
     {
       const int vD = m.fv[3 * (t / 3) + (t % 3 + 2) % 3];
       const Vec2 D = m.apex[t];
-      subtract_dominated(Dw, internal::Edge_distance_function{L - D.x, D.y * D.y, m_dist[vD]}, w.b0, w.b1, pieces);
+      subtract(internal::Edge_distance_function{L - D.x, D.y * D.y, m_dist[vD]});
     }
   }
 
@@ -726,7 +733,7 @@ private:
     const double x = (dy > 1e-300) ? w.sx + (pk.x - w.sx) * (-w.sy) / dy : pk.x;
     const double tol = 1e-10 * L;
     if(x < w.b0 - tol || x > w.b1 + tol) return internal::kInf;
-    return w.sigma + std::hypot(pk.x - w.sx, pk.y - w.sy);
+    return w.sigma + std::sqrt((pk.x - w.sx) * (pk.x - w.sx) + (pk.y - w.sy) * (pk.y - w.sy));
   }
 
   /// Minimum over the windows entering face f, its vertices (as pseudo-sources)
@@ -779,8 +786,8 @@ private:
     return window_value(*g.window, Vec2{internal::dot(q, g.eu), internal::cross(g.eu, q)}, g.L);
   }
 
-  /// distance from `c` to the triangle P (0 inside)
-  static double distance_to_triangle(const Vec2 P[3], Vec2 c)
+  /// squared distance from `c` to the triangle P (0 inside)
+  static double squared_distance_to_triangle(const Vec2 P[3], Vec2 c)
   {
     bool inside = true;
     double best = internal::kInf;
@@ -791,7 +798,8 @@ private:
       const double dd = internal::dot(d, d);
       double t = (dd > 0.) ? internal::dot(c - a, d) / dd : 0.;
       t = (std::min)(1., (std::max)(0., t));
-      best = (std::min)(best, internal::norm(c - (a + t * d)));
+      const Vec2 x = c - (a + t * d);
+      best = (std::min)(best, internal::dot(x, x));
     }
     return inside ? 0. : best;
   }
@@ -803,7 +811,11 @@ private:
     return true;
   }
 
-  static void circle_line_angles(Vec2 c, double r, Vec2 p, Vec2 q, std::vector<double>& out)
+  /// circle (c, r) and the line p + t (q - p): the polar angles around c of the meeting points
+  /// with tmin <= t <= tmax that `accept`
+  template <class Accept>
+  static void circle_line_angles(Vec2 c, double r, Vec2 p, Vec2 q, std::vector<double>& out, double tmin, double tmax,
+                                 Accept accept)
   {
     const Vec2 d = q - p;
     const double dd = internal::dot(d, d);
@@ -817,22 +829,29 @@ private:
     const double sq = std::sqrt(disc);
     for(double t : {-b - sq, -b + sq})
     {
+      if(t < tmin || t > tmax) continue;
       const Vec2 x = pc + t * d;
-      out.push_back(std::atan2(x.y, x.x));
+      if(accept(c + x)) out.push_back(std::atan2(x.y, x.x));
     }
   }
 
-  static void circle_circle_angles(Vec2 c1, double r1, Vec2 c2, double r2, std::vector<double>& out)
+  /// circles (c1, r1) and (c2, r2): the polar angles around c1 of the meeting points that `accept`
+  template <class Accept>
+  static void circle_circle_angles(Vec2 c1, double r1, Vec2 c2, double r2, std::vector<double>& out, Accept accept)
   {
     const Vec2 d = c2 - c1;
     const double D = internal::norm(d);
     if(!(D > 0.) || D > r1 + r2 || D < std::abs(r1 - r2)) return;
     const double a = (r1 * r1 - r2 * r2 + D * D) / (2. * D);
     const double h = std::sqrt((std::max)(0., r1 * r1 - a * a));
+    const Vec2 u{d.x / D, d.y / D};
+    const bool first = accept(Vec2{c1.x + a * u.x - h * u.y, c1.y + a * u.y + h * u.x});
+    const bool second = accept(Vec2{c1.x + a * u.x + h * u.y, c1.y + a * u.y - h * u.x});
+    if(!first && !second) return;
     const double base = std::atan2(d.y, d.x);
     const double phi = std::atan2(h, a);
-    out.push_back(base + phi);
-    out.push_back(base - phi);
+    if(first) out.push_back(base + phi);
+    if(second) out.push_back(base - phi);
   }
 
   /// The level of an iso-curve inside a face: level(x) = a . x + b in the face frame (a = 0: a
@@ -898,7 +917,8 @@ private:
     gens.clear();
     const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
     auto add = [&](const Generator& g) {
-      if(distance_to_triangle(P, g.c) < R - g.sigma) gens.push_back(g);
+      const double reach = R - g.sigma;
+      if(reach > 0. && squared_distance_to_triangle(P, g.c) < reach * reach) gens.push_back(g);
     };
     for(int k = 0; k < 3; ++k)
     {
@@ -939,21 +959,24 @@ private:
   template <class LevelOfFace>
   void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs) const
   {
-    // faces to examine: around reached vertices and on both sides of edges
-    // holding windows (sorted list, no O(|F|) storage: iso_curve stays cheap
-    // and thread-safe for small disks)
-    std::vector<int> faces_to_visit;
+    // faces to examine: those with a distance generator (collect_generators): the faces that
+    // windows enter, the faces around reached pseudo-sources and a source vertex, the source's
+    // faces (sorted list, no O(|F|) storage: iso_curve stays cheap and thread-safe for small
+    // disks; the buffers are per thread, to reuse their storage from one call to the next)
+    thread_local std::vector<int> faces_to_visit;
+    faces_to_visit.clear();
     for(int v : m_touched_vertices)
-      for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i) faces_to_visit.push_back(m.vf_list[i] / 3);
+      if(m.pseudo[v] || m_dist[v] == 0.)
+        for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i) faces_to_visit.push_back(m.vf_list[i] / 3);
     for(int e : m_touched_edges)
       for(int id : m_edge_windows[e]) faces_to_visit.push_back(m_windows[id].slot / 3);
     for(const auto& sf : m_source_faces) faces_to_visit.push_back(sf.first);
     std::sort(faces_to_visit.begin(), faces_to_visit.end());
     faces_to_visit.erase(std::unique(faces_to_visit.begin(), faces_to_visit.end()), faces_to_visit.end());
 
-    std::vector<Generator> gens;
-    std::vector<double> angles;
-    std::vector<std::pair<double, double> > kept;
+    thread_local std::vector<Generator> gens;
+    thread_local std::vector<double> angles;
+    thread_local std::vector<std::pair<double, double> > kept;
     for(int f : faces_to_visit)
     {
       const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
@@ -980,6 +1003,14 @@ private:
       if(dmin + lmax < Lmin || dmax + lmax * internal::kInvSqrt3 < Lmin) continue;
       collect_generators(f, Lmax, gens);
       if(gens.empty()) continue;
+      // a point near enough to the face to bound a piece of curve in it (loose: a needless cut
+      // only splits a piece in two)
+      const double cut_margin = 1e-7;
+      auto near_face = [&](Vec2 x) {
+        for(int k = 0; k < 3; ++k)
+          if(m.to_edge_frame(f, k, x).y < -cut_margin * lmax) return false;
+        return true;
+      };
       // the curve of generator g: |x - c| = r + a . (x - c), r = level(c) - sigma (a circle of
       // radius R - sigma when the level is constant)
       auto curve_radius = [&](const Generator& g) { return level.at(g.c) - g.sigma; };
@@ -1000,11 +1031,14 @@ private:
           contains = internal::norm(x) - r - internal::dot(level.a, x) < 0.;
         }
         if(contains) continue;
+        // the curve is cut where a piece's classification can change: where it crosses the
+        // face's edges, a wedge boundary or another generator's curve inside the face (a cut
+        // outside the face would only split a piece that is dropped anyway)
         angles.clear();
         for(int i = 0; i < 3; ++i)
         {
           if(conic) conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
-          else circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles);
+          else circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles, -cut_margin, 1. + cut_margin, [](Vec2) { return true; });
         }
         if(angles.empty() && !inside_face(f, curve_point(g, r, 0.))) continue;
         for(std::size_t hi = 0; hi < gens.size(); ++hi)
@@ -1019,14 +1053,14 @@ private:
               conic_line_angles(g.c, r, level.a, h.c, b, angles);
             }
             else
-            {
-              circle_line_angles(g.c, r, h.c, a, angles);
-              circle_line_angles(g.c, r, h.c, b, angles);
+            {   // (the wedge's sides begin on the window's edge: t >= 1)
+              circle_line_angles(g.c, r, h.c, a, angles, 1. - cut_margin, internal::kInf, near_face);
+              circle_line_angles(g.c, r, h.c, b, angles, 1. - cut_margin, internal::kInf, near_face);
             }
           }
           if(hi == gi) continue;
           if(conic) conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
-          else circle_circle_angles(g.c, r, h.c, curve_radius(h), angles);
+          else circle_circle_angles(g.c, r, h.c, curve_radius(h), angles, near_face);
         }
         for(double& a : angles)
         {
@@ -1123,15 +1157,47 @@ public:
     };
     std::vector<int> next(n, -1), prev(n, -1);
     // candidate successors: arcs of the same face and of the faces sharing a vertex with it
-    std::vector<int> cand;
+    std::vector<int> cand, close;
+    auto share_a_vertex = [&](int f, int g) {
+      for(int k = 0; k < 3; ++k)
+        for(int l = 0; l < 3; ++l)
+          if(mesh.fv[3 * f + k] == mesh.fv[3 * g + l]) return true;
+      return false;
+    };
     for(std::size_t i = 0; i < n; ++i)
     {
-      cand.clear();
       const int f = fidx[i];
       double scale = 0.;
+      for(int k = 0; k < 3; ++k) scale = (std::max)(scale, mesh.edge_length(3 * f + k));
+      // Matching tolerance: 1e-4 x the longest edge of the face.  Where several
+      // windows carry distance fields that differ by ~1e-11 (the same source
+      // unfolded along slightly different face strips), the ownership of the
+      // level set switches at ill-conditioned points and consecutive arcs may
+      // be separated by gaps of ~1e-7 x edge length (all arc points are still
+      // at distance R up to ~1e-11).
+      const double tol2 = (1e-4 * scale) * (1e-4 * scale);
+      // the arcs that start close enough: almost always one, taken at once when it is a candidate
+      close.clear();
+      for(std::size_t j = 0; j < n; ++j)
+        if(prev[j] < 0 && d2(en[i], st[j]) <= tol2) close.push_back(int(j));
+      if(close.empty()) continue;
+      const auto full_circle = [&](int j) {
+        return !(arcs[j].is_segment || arcs[j].theta_end - arcs[j].theta_start < 2. * internal::kPi - 1e-9);
+      };
+      if(close.size() == 1)
+      {
+        const int j = close[0];
+        if((j != int(i) || full_circle(j)) && share_a_vertex(f, fidx[j]))
+        {
+          next[i] = j;
+          prev[j] = int(i);
+        }
+        continue;
+      }
+      // several: the closest, ties to the last in the order of the faces around f's corners
+      cand.clear();
       for(int k = 0; k < 3; ++k)
       {
-        scale = (std::max)(scale, mesh.edge_length(3 * f + k));
         const int v = mesh.fv[3 * f + k];
         for(int j = mesh.vf_start[v]; j < mesh.vf_start[v + 1]; ++j)
         {
@@ -1141,13 +1207,6 @@ public:
             cand.push_back(it->second);
         }
       }
-      // Matching tolerance: 1e-4 x the longest edge of the face.  Where several
-      // windows carry distance fields that differ by ~1e-11 (the same source
-      // unfolded along slightly different face strips), the ownership of the
-      // level set switches at ill-conditioned points and consecutive arcs may
-      // be separated by gaps of ~1e-7 x edge length (all arc points are still
-      // at distance R up to ~1e-11).
-      const double tol2 = (1e-4 * scale) * (1e-4 * scale);
       int best = -1;
       double bd = tol2;
       for(int j : cand)

@@ -73,7 +73,7 @@ struct Iso_arc
   double level_function(const std::array<double, 2>& x) const
   {
     const double dx = x[0] - center[0], dy = x[1] - center[1];
-    return std::hypot(dx, dy) - radius - gradient[0] * dx - gradient[1] * dy;
+    return std::sqrt(dx * dx + dy * dy) - radius - gradient[0] * dx - gradient[1] * dy;
   }
   /// geodesic distance from the source to `center` (the pseudo-source)
   double sigma = 0.;
@@ -124,7 +124,7 @@ struct Iso_arc
   double length() const
   {
     if(is_segment)
-      return std::hypot(segment_end[0] - segment_start[0], segment_end[1] - segment_start[1]);
+      return std::sqrt((segment_end[0] - segment_start[0]) * (segment_end[0] - segment_start[0]) + (segment_end[1] - segment_start[1]) * (segment_end[1] - segment_start[1]));
     if(!is_conic()) return radius * (theta_end - theta_start);
     // |d/dtheta (rho u)| = sqrt(rho^2 + rho'^2), integrated by 4-point Gauss-Legendre on pieces
     // of at most pi/8 (relative error < 1e-9 for eccentricities up to 0.9)

@@ -325,14 +325,12 @@ private:
 
     // the new iso-curve at 2r, and the faces the new disk meets
     const auto chains = oracle_.iso_curve(two_r);
-    std::vector<Arc> arcs;
+    std::vector<face_descriptor>& disk_faces = disk_faces_;
+    disk_faces.assign(1, loc.first);
     for(const auto& curve : chains) {
-      arcs.insert(arcs.end(), curve.arcs.begin(), curve.arcs.end());
       if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+      for(const Arc& a : curve.arcs) disk_faces.push_back(a.face);
     }
-    std::vector<face_descriptor> disk_faces;
-    disk_faces.push_back(loc.first);
-    for(const Arc& a : arcs) disk_faces.push_back(a.face);
     oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
       for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
         if(f != GT::null_face()) disk_faces.push_back(f);
@@ -387,14 +385,12 @@ private:
 
     auto vertex_radius = [&](vertex_descriptor v) { return radius_at(v); };
     const auto chains = oracle_.iso_curve(rp, vertex_radius);
-    std::vector<Arc> arcs;
+    std::vector<face_descriptor>& disk_faces = disk_faces_;
+    disk_faces.assign(1, loc.first);
     for(const auto& curve : chains) {
-      arcs.insert(arcs.end(), curve.arcs.begin(), curve.arcs.end());
       if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+      for(const Arc& a : curve.arcs) disk_faces.push_back(a.face);
     }
-    std::vector<face_descriptor> disk_faces;
-    disk_faces.push_back(loc.first);
-    for(const Arc& a : arcs) disk_faces.push_back(a.face);
     oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
       if(vd.second > rp + radius_at(vd.first)) return;
       for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
@@ -479,6 +475,7 @@ private:
   std::mt19937_64 rng_;
   internal::Point_grid grid_;
   std::vector<Sample> samples_;
+  std::vector<face_descriptor> disk_faces_;   // (the faces a new disk meets; kept to reuse its storage)
   std::vector<double> vertex_radius_;   // adaptive density: radius per vertex (by vertex index)
   Sampling_statistics stats_;
   double r_ = 0;
