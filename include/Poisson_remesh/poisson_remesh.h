@@ -164,6 +164,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
   Relaxation_times seconds_by_step;
   unsigned int regraded = 0;
+  std::size_t first_count = 0;   // (the first attempt's vertices)
   // the pointed tips (the last corners of the feature set)
   std::vector<Point_3> tips;
   for(std::size_t i = features.corners.size() - features.number_of_tips; i < features.corners.size(); ++i)
@@ -309,7 +310,9 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     internal::collect_garbage(output);
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
-    const bool last = !places.wanted() || attempt >= regrading_attempts;
+    if(attempt == 0) first_count = num_vertices(output);
+    const bool last = !places.wanted() || attempt >= regrading_attempts ||
+                      double(num_vertices(output)) > regrading.max_growth * double(first_count);
     output_is_best = attempt == 0 || places.better_than(best_places);
     if(output_is_best) {
       best_places = places;

@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -142,6 +143,14 @@ template <class Arc>
 void arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>* on_a, std::vector<Arc_crossing>* on_b)
 {
   if(a.is_conic() || b.is_conic()) {
+    // a conic arc lies within radius / (1 - |gradient|) of its focus: two arcs whose such disks
+    // are apart cannot meet (the common case in a face holding many arcs, on a coarse input)
+    auto reach = [](const Arc& c) {
+      const double g = std::sqrt(c.gradient[0] * c.gradient[0] + c.gradient[1] * c.gradient[1]);
+      return g < 1 ? c.radius / (1 - g) : std::numeric_limits<double>::infinity();
+    };
+    const double dx = b.center[0] - a.center[0], dy = b.center[1] - a.center[1], r = reach(a) + reach(b);
+    if(dx * dx + dy * dy > r * r) return;
     if(on_a) conic_arc_crossings(a, b, *on_a);
     if(on_b) conic_arc_crossings(b, a, *on_b);
     return;
