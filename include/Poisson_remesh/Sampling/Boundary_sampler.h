@@ -325,18 +325,7 @@ private:
 
     // the new iso-curve at 2r, and the faces the new disk meets
     const auto chains = oracle_.iso_curve(two_r);
-    std::vector<face_descriptor>& disk_faces = disk_faces_;
-    disk_faces.assign(1, loc.first);
-    for(const auto& curve : chains) {
-      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
-      for(const Arc& a : curve.arcs) disk_faces.push_back(a.face);
-    }
-    oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
-      for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
-        if(f != GT::null_face()) disk_faces.push_back(f);
-    }));
-    std::sort(disk_faces.begin(), disk_faces.end());
-    disk_faces.erase(std::unique(disk_faces.begin(), disk_faces.end()), disk_faces.end());
+    const std::vector<face_descriptor>& disk_faces = faces_of_new_disk(loc, chains, [](vertex_descriptor, double) { return true; });
 
     const std::size_t id = samples_.size();
     boundary_.update(chains, id, disk_faces,
@@ -385,19 +374,8 @@ private:
 
     auto vertex_radius = [&](vertex_descriptor v) { return radius_at(v); };
     const auto chains = oracle_.iso_curve(rp, vertex_radius);
-    std::vector<face_descriptor>& disk_faces = disk_faces_;
-    disk_faces.assign(1, loc.first);
-    for(const auto& curve : chains) {
-      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
-      for(const Arc& a : curve.arcs) disk_faces.push_back(a.face);
-    }
-    oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
-      if(vd.second > rp + radius_at(vd.first)) return;
-      for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
-        if(f != GT::null_face()) disk_faces.push_back(f);
-    }));
-    std::sort(disk_faces.begin(), disk_faces.end());
-    disk_faces.erase(std::unique(disk_faces.begin(), disk_faces.end()), disk_faces.end());
+    const std::vector<face_descriptor>& disk_faces =
+      faces_of_new_disk(loc, chains, [&](vertex_descriptor v, double d) { return d <= rp + radius_at(v); });
 
     const std::size_t id = samples_.size();
     boundary_.update(chains, id, disk_faces,
@@ -410,6 +388,28 @@ private:
     samples_.push_back({loc, p, kind, level, rp});
     grid_.insert(id, pc);
     return true;
+  }
+
+  // The faces the new disk meets, sorted: a face meeting it holds the sample, is crossed by its
+  // iso-curve `chains`, or has a vertex inside it (a vertex v the propagation reached at distance
+  // d with inside(v, d)); counts the open iso-curves on the way.
+  template <class Chains, class Inside>
+  const std::vector<face_descriptor>& faces_of_new_disk(const Face_location& loc, const Chains& chains, Inside inside)
+  {
+    std::vector<face_descriptor>& faces = disk_faces_;
+    faces.assign(1, loc.first);
+    for(const auto& curve : chains) {
+      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+      for(const Arc& a : curve.arcs) faces.push_back(a.face);
+    }
+    oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
+      if(!inside(vd.first, vd.second)) return;
+      for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
+        if(f != GT::null_face()) faces.push_back(f);
+    }));
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
   }
 
   bool covered_by_earlier_adaptive_samples(const Face_location& x)

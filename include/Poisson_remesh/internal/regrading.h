@@ -59,8 +59,8 @@ struct Regrading_settings
   double grading = 0.25;        ///< the largest growth of the radius per unit of length
   unsigned int seed_step = 1000003;   ///< attempt k samples with the seed random_seed + k seed_step
   /// no remake after an attempt with more than this times the first attempt's vertices: finer
-  /// radii around a few places at fault are to mend them, not to turn into a much finer mesh (on
-  /// an input that is all pointed tips, each remake made it several times finer)
+  /// radii around a few places at fault are to mend them, not to turn into a much finer mesh
+  /// (where nearly every place is at fault, each remake would make the whole mesh finer)
   double max_growth = 1.5;
 };
 
