@@ -84,6 +84,11 @@ overhead_meshes=(cube-meshed fandisk elephant triceratops bull anchor)
 bash "$here/program_overhead.sh" "$build" "${overhead_meshes[@]}" > "$out/program_overhead.md"
 stamp "$out/program_overhead.md" "benchmark/Poisson_remesh/program_overhead.sh $build ${overhead_meshes[*]}"
 
+step "parallel mode: 1 and 2 threads against CGAL's isotropic_remeshing"
+parallel_meshes=(armadillo bunny00 camel fandisk elephant)
+bash "$here/parallel.sh" "$build" 2 "${parallel_meshes[@]}" > "$out/parallel.md"
+stamp "$out/parallel.md" "benchmark/Poisson_remesh/parallel.sh $build 2 ${parallel_meshes[*]}"
+
 step "bad input"
 bash "$here/bad_inputs.sh" "$examples/poisson_remesh" > "$out/bad_inputs.md"
 stamp "$out/bad_inputs.md" "benchmark/Poisson_remesh/bad_inputs.sh"

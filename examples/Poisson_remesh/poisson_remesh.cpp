@@ -33,6 +33,11 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+#include <thread>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -96,6 +101,8 @@ static const char* usage =
   "                      (by default they are removed and split, and the program says how many)\n"
   "  --quiet             no progress on stderr (it is shown only when stderr is a terminal)\n"
   "  --timings           the relaxation's time by step (the paper's and each operator beyond it)\n"
+  "  --threads N         threads of the parallel mode (default: all cores, divided among the --jobs;\n"
+  "                      the output is the same for any N)\n"
   "  --help              this text\n"
   "several inputs (batch):\n"
   "  -o, --output-dir D  remesh every input into folder D (created if missing)\n"
@@ -116,7 +123,7 @@ struct Options
   std::string summary_csv, summary_json;
   cli::Density_options density;
   double vertices = 0, edge_length = 0, sharp_angle = 60, fidelity = 0.008;
-  unsigned long seed = 0, iterations = 0, jobs = 1;
+  unsigned long seed = 0, iterations = 0, jobs = 1, threads = 0;
   long regrading = -1;   // (-1: the library's default, 6 for a uniform density, else 0)
   bool strict = false, self_intersections = true, compare_peer = false, features = true, grading = true;
   bool full_report = false, quiet = false, timings = false;
@@ -191,6 +198,12 @@ std::string format_figure(double x, int precision)
 // the row). Returns the exit code; fills `row`.
 int remesh_one(const Options& o, const std::string& in, const std::string& out, bool table, Terminal_progress& progress, Row& row)
 {
+#ifdef CGAL_LINKED_WITH_TBB
+  // the parallel mode's threads (each process of a batch sets its own: a share of the cores)
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    o.threads ? o.threads : std::max<std::size_t>(1, cores / std::max<std::size_t>(1, o.jobs)));
+#endif
   const auto start = std::chrono::steady_clock::now();
   auto seconds_since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(); };
@@ -266,7 +279,7 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
             .strict_input(o.strict)
             .density(field)
             .progress(on_progress);
-        return PR::poisson_remesh(input, output, params);
+        return PR::poisson_remesh<CGAL::Parallel_if_available_tag>(input, output, params);
       });
       row.seconds_remesh = seconds_since(remesh_start);
       progress.clear();
@@ -626,6 +639,10 @@ int main(int argc, char** argv)
       else if(a == "--full-report") o.full_report = true;
       else if(a == "--quiet" || a == "-q") o.quiet = true;
       else if(a == "--timings") o.timings = true;
+      else if(a == "--threads") {
+        o.threads = args.whole_number(a);
+        if(o.threads == 0) throw cli::Usage_error("--threads needs at least 1");
+      }
       else if(a == "-o" || a == "--output-dir") o.output_dir = args.value(a);
       else if(a == "--format") o.format = args.value(a);
       else if(a == "-j" || a == "--jobs") o.jobs = args.whole_number(a);

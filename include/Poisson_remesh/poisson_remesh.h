@@ -111,7 +111,7 @@ private:
 
 // poisson_remesh() on an input without zero-area faces; `input` is read through the
 // vertex_point_map of `np` (if any)
-template <class TriangleMesh, class NamedParameters>
+template <class ConcurrencyTag, class TriangleMesh, class NamedParameters>
 Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMesh& output, const NamedParameters& np)
 {
   using parameters::choose_parameter;
@@ -218,7 +218,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     // the default relaxer, or the projection onto the input's features it would give (a user's
     // relaxer): one of them is built
     constexpr bool default_relaxer = parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
-    std::optional<Lloyd_relaxer<TriangleMesh, K>> relaxer;
+    std::optional<Lloyd_relaxer<TriangleMesh, K, ConcurrencyTag>> relaxer;
     std::optional<internal::Feature_projector<TriangleMesh, K>> projector;
     if constexpr(default_relaxer) relaxer.emplace(input, features);
     else projector.emplace(input, features);
@@ -379,8 +379,15 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   Cancelled: see progress.h) and `strict_input` (default false: zero-area input faces are
   removed, on a copy of the input, before remeshing, and counted in
   `Poisson_remesh_result::number_of_repaired_faces`; true: such input throws std::invalid_argument).
+
+  `ConcurrencyTag`: CGAL::Sequential_tag (the default) or CGAL::Parallel_tag (needs TBB;
+  CGAL::Parallel_if_available_tag falls back to Sequential_tag without it). In the parallel mode
+  the default relaxer's vertex passes (Lloyd steps, angle smoothing and optimization) and its
+  fidelity distance queries run on TBB's threads (as many as TBB is allowed: tbb::global_control);
+  the sampling, the tessellation and the flips stay sequential. The output is the same in both
+  modes and for any number of threads, for a given `random_seed`.
 */
-template <class InputMesh, class OutputMesh, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class InputMesh, class OutputMesh, class NamedParameters = parameters::Default_named_parameters>
 Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
                                      const NamedParameters& np = parameters::default_values())
 {
@@ -401,7 +408,7 @@ Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
   constexpr bool same_type = std::is_same<InputMesh, OutputMesh>::value;
   constexpr bool own_points = parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_point_t>::value;
   if constexpr(same_type && own_points)
-    if(degenerate == 0) return internal::poisson_remesh_impl(input, output, np);
+    if(degenerate == 0) return internal::poisson_remesh_impl<ConcurrencyTag>(input, output, np);
   // (a user's geodesic oracle is built on the input itself: it cannot follow a copy)
   if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::geodesic_oracle_t>::value) {
     throw std::invalid_argument("poisson_remesh: a geodesic_oracle works on the input itself: give no vertex_point_map "
@@ -419,7 +426,7 @@ Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
       internal::collect_garbage(work);
     }
     Poisson_remesh_result result =
-      internal::poisson_remesh_impl(work, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, work)));
+      internal::poisson_remesh_impl<ConcurrencyTag>(work, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, work)));
     result.number_of_repaired_faces = degenerate;
     result.number_of_split_vertices = split;
     return result;

@@ -48,6 +48,10 @@ faces_of() { awk '!/^#/ && NF { n++; if(n == 2) { print $2; exit } }' "$1"; }
 check "picture: a path per face" sh -c "test \$(grep -c '<path ' '$dir/pic.svg') -gt \$(( $(faces_of "$data/meshes/elephant.off") + $(faces_of "$dir/ours.off") ))"
 check "picture refused in a batch" run 2 "$poisson_remesh" --picture "$dir/p.svg" -o "$dir/batch_pic" "$data/meshes/elephant.off"
 check "same seed, same output" sh -c "'$poisson_remesh' --vertices 1200 --seed 2 '$data/meshes/elephant.off' '$dir/ours2.off' >/dev/null && cmp -s '$dir/ours.off' '$dir/ours2.off'"
+# the parallel mode's threads do not change the output (the run above used all cores)
+check "one thread, same output" sh -c "'$poisson_remesh' --vertices 1200 --seed 2 --threads 1 '$data/meshes/elephant.off' '$dir/ours3.off' >/dev/null && cmp -s '$dir/ours.off' '$dir/ours3.off'"
+check "no threads" run 2 "$poisson_remesh" --threads 0 "$data/meshes/elephant.off" "$dir/keep.off"
+check "names the rule" has err "--threads needs at least 1"
 # pointed tips sampled finer (feature grading), or not with --no-grading
 check "horn tips graded" run 0 "$poisson_remesh" --vertices 1500 --no-self-intersections "$data/meshes/triceratops.off" "$dir/graded.off"
 check "graded tips reported" has out "pointed tip(s)"

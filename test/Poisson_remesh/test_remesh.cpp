@@ -17,6 +17,10 @@
 
 #include <catch2/catch.hpp>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
 #include <algorithm>
 #include <iostream>
 #include <sstream>
@@ -235,6 +239,68 @@ TEST_CASE("remeshing is deterministic for a given seed", "[remesh]")
   auto vb = vertices(b).begin();
   for(auto v : vertices(a)) CHECK(a.point(v) == b.point(*vb++));
 }
+
+#ifdef CGAL_LINKED_WITH_TBB
+TEST_CASE("the parallel mode gives the sequential output, whatever the number of threads", "[remesh][parallel]")
+{
+  // (the same points and the same faces: the parallel vertex passes move, at once, vertices whose
+  // earlier neighbours have moved)
+  auto same = [](const Mesh& a, const Mesh& b) {
+    REQUIRE(num_vertices(a) == num_vertices(b));
+    REQUIRE(num_faces(a) == num_faces(b));
+    auto vb = vertices(b).begin();
+    std::size_t moved = 0;
+    for(auto v : vertices(a)) if(a.point(v) != b.point(*vb++)) ++moved;
+    CHECK(moved == 0);
+    auto fb = faces(b).begin();
+    std::size_t other = 0;
+    for(auto f : faces(a)) {
+      std::vector<std::size_t> x, y;
+      for(auto v : CGAL::vertices_around_face(halfedge(f, a), a)) x.push_back(std::size_t(v));
+      for(auto v : CGAL::vertices_around_face(halfedge(*fb, b), b)) y.push_back(std::size_t(v));
+      ++fb;
+      if(x != y) ++other;
+    }
+    CHECK(other == 0);
+  };
+  for(const bool adaptive : {false, true}) {
+    INFO((adaptive ? "adaptive" : "uniform"));
+    Mesh in, sequential;
+    PR::read_surface_mesh(test_support::data_mesh(adaptive ? "meshes/elephant.off" : "meshes/fandisk.off"), in);
+    auto np = PR::parameters::target_vertex_count(1200).random_seed(2u);
+    if(adaptive) PR::poisson_remesh(in, sequential, np.density(PR::Curvature_density()));
+    else PR::poisson_remesh(in, sequential, np);
+    for(const int threads : {1, 2, 4}) {
+      INFO(threads << " threads");
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+      Mesh parallel;
+      if(adaptive) PR::poisson_remesh<CGAL::Parallel_tag>(in, parallel, np.density(PR::Curvature_density()));
+      else PR::poisson_remesh<CGAL::Parallel_tag>(in, parallel, np);
+      same(sequential, parallel);
+    }
+  }
+  // the rounds behind it: every vertex in one, after the rounds of its neighbours earlier in the
+  // order and before those of its neighbours later in it
+  Mesh m;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), m);
+  std::vector<Mesh::Vertex_index> order(vertices(m).begin(), vertices(m).end());
+  std::reverse(order.begin(), order.end());   // (any order: here the reverse of the mesh's)
+  const auto rounds = PR::internal::dependency_rounds(m, order);
+  std::vector<int> round_of(num_vertices(m), -1), rank(num_vertices(m), -1);
+  for(std::size_t i = 0; i < order.size(); ++i) rank[std::size_t(order[i])] = int(i);
+  for(std::size_t r = 0; r < rounds.size(); ++r)
+    for(auto v : rounds[r]) { CHECK(round_of[std::size_t(v)] == -1); round_of[std::size_t(v)] = int(r); }
+  std::size_t misplaced = 0;
+  for(auto e : edges(m)) {
+    std::size_t a = std::size_t(source(e, m)), b = std::size_t(target(e, m));
+    if(rank[a] > rank[b]) std::swap(a, b);
+    if(!(round_of[a] >= 0 && round_of[a] < round_of[b])) ++misplaced;
+  }
+  CHECK(misplaced == 0);
+  CHECK(std::count(round_of.begin(), round_of.end(), -1) == 0);
+  CHECK(rounds.size() < num_vertices(m) / 10);   // (rounds of many vertices: the point of them)
+}
+#endif
 
 TEST_CASE("pointed tips are sampled finer, graded back to the spacing; needles are left alone", "[remesh][grading]")
 {

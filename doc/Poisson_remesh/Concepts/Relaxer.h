@@ -19,8 +19,9 @@ With a user's relaxer the remesher does not remake a failed result (`regrading_a
 defaults to 0: a remake aims at 30 degrees, which a user's relaxer may not) unless asked; the
 remakes, when asked for, work with it as with the default.
 
-\cgalHasModel `Poisson_remesh::Lloyd_relaxer<InputMesh, GeomTraits>` (the default; its
-`Relaxation_settings` are its own business: the member `settings`)
+\cgalHasModel `Poisson_remesh::Lloyd_relaxer<InputMesh, GeomTraits, ConcurrencyTag>` (the default; its
+`Relaxation_settings` are its own business: the member `settings`; `ConcurrencyTag`
+`CGAL::Parallel_tag` runs its vertex passes on TBB's threads, with the same result)
 */
 class Relaxer
 {

@@ -35,14 +35,15 @@ template <class Mesh>
 using Angle_smoothing_memory = std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>;
 
 /// One round of angle smoothing of `m` (the vertices for which `is_fixed` holds stay), with the
-/// memory of the earlier rounds (`memory`; nullptr: every movable vertex is searched). Returns the
-/// number of vertices moved.
-template <class Context, class Mesh, class IsFeatureEdge, class IsFixed>
+/// memory of the earlier rounds (`memory`; nullptr: every movable vertex is searched); in parallel
+/// with `ConcurrencyTag` = CGAL::Parallel_tag, with the same result (internal::vertex_angle_search).
+/// Returns the number of vertices moved.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class IsFixed>
 std::size_t smooth_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, Relaxation_statistics& stats,
                           Angle_smoothing_memory<Mesh>* memory = nullptr)
 {
   // (the search's angle thresholds and pin reach serve the other goals only)
-  return Postprocessing::internal::vertex_angle_search(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats, memory);
+  return Postprocessing::internal::vertex_angle_search<ConcurrencyTag>(ctx, m, is_feature, is_fixed, Angle_goal::sum_of_smallest, 0, 0, 0, stats, memory);
 }
 
 } // namespace Postprocessing

@@ -14,6 +14,7 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/parallel.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -41,9 +42,10 @@ struct Fidelity_settings
 };
 
 /// One pass of fidelity insertions in `m`; `new_vertex(v, false)` is told each new vertex, which is
-/// also added to `added` (kept sorted: the caller pins these vertices). Returns the number of
-/// vertices inserted.
-template <class Context, class Mesh, class IsFeatureEdge, class NewVertex>
+/// also added to `added` (kept sorted: the caller pins these vertices). The distance queries run on
+/// TBB's threads with `ConcurrencyTag` = CGAL::Parallel_tag (`is_feature` is called from one thread;
+/// the result is the same in both modes). Returns the number of vertices inserted.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class NewVertex>
 std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Fidelity_settings& s,
                                     Relaxation_statistics& stats, std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added)
 {
@@ -63,33 +65,51 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   tree.accelerate_distance_queries();
   // the input's vertices, edge midpoints and face centroids (all on the input: the distance
   // from the input to the mesh peaks inside the input's triangles as often as at its vertices)
+  // (the distance queries run in parallel with CGAL::Parallel_tag; their results are taken in
+  // in the same order in both modes)
   std::vector<std::pair<double, Point_3>> far;
-  auto check = [&](const Point_3& p) {
-    const double d2 = CGAL::to_double(tree.squared_distance(p));
-    if(d2 > tol * tol) far.push_back({d2, p});
-    return d2;
+  std::vector<Point_3> queries;
+  std::vector<double> d2s;
+  auto distances = [&] {   // (the squared distance from each query point to the mesh)
+    d2s.assign(queries.size(), 0);
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) { d2s[i] = CGAL::to_double(tree.squared_distance(queries[i])); });
+  };
+  auto take_far = [&] {
+    for(std::size_t i = 0; i < queries.size(); ++i)
+      if(d2s[i] > tol * tol) far.push_back({d2s[i], queries[i]});
   };
   // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
   // of its vertices is not queried)
   auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), ctx.input());
+  std::vector<typename boost::graph_traits<InputMesh>::vertex_descriptor> queried;
+  queries.clear();
   for(auto v : vertices(ctx.input())) {
     put(vertex_distance, v, std::numeric_limits<double>::infinity());
-    if(halfedge(v, ctx.input()) != boost::graph_traits<InputMesh>::null_halfedge()) put(vertex_distance, v, std::sqrt(check(get(in_vpm, v))));
+    if(halfedge(v, ctx.input()) != boost::graph_traits<InputMesh>::null_halfedge()) { queried.push_back(v); queries.push_back(get(in_vpm, v)); }
   }
+  distances();
+  take_far();
+  for(std::size_t i = 0; i < queried.size(); ++i) put(vertex_distance, queried[i], std::sqrt(d2s[i]));
   auto near_by_way_of = [&](const Point_3& x, auto v) {
     return get(vertex_distance, v) + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, get(in_vpm, v)))) <= tol;
   };
+  queries.clear();
   for(auto e : edges(ctx.input())) {
     const auto a = source(e, ctx.input()), b = target(e, ctx.input());
     const Point_3 x = CGAL::midpoint(get(in_vpm, a), get(in_vpm, b));
-    if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) check(x);
+    if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) queries.push_back(x);
   }
+  distances();
+  take_far();
+  queries.clear();
   for(auto f : faces(ctx.input())) {
     const auto h = halfedge(f, ctx.input());
     const auto a = source(h, ctx.input()), b = target(h, ctx.input()), c = target(next(h, ctx.input()), ctx.input());
     const Point_3 x = CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c));
-    if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) check(x);
+    if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) queries.push_back(x);
   }
+  distances();
+  take_far();
   // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
   // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
   // (the input point nearest c, and its squared distance to c)
@@ -98,24 +118,38 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     const Point_3 p = ctx.project_on_surface(c, hint);
     return std::make_pair(CGAL::to_double(CGAL::squared_distance(c, p)), p);
   };
-  for(face_descriptor f : faces(m)) {
-    const auto h = halfedge(f, m);
-    const auto [d2, p] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m)));
-    // (not when that input point is near the mesh elsewhere: the other side of a thin part)
-    if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
+  {
+    std::vector<face_descriptor> fs(faces(m).first, faces(m).second);
+    std::vector<std::pair<double, Point_3>> nearest(fs.size());
+    std::vector<char> kept(fs.size(), 0);
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
+      const auto h = halfedge(fs[i], m);
+      nearest[i] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m)));
+      // (not when that input point is near the mesh elsewhere: the other side of a thin part)
+      kept[i] = nearest[i].first > tol * tol && CGAL::to_double(tree.squared_distance(nearest[i].second)) > tol * tol;
+    });
+    for(std::size_t i = 0; i < fs.size(); ++i) if(kept[i]) far.push_back(nearest[i]);
   }
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor>> far_edges;
-  for(auto e : edges(m)) {
-    const halfedge_descriptor h = halfedge(e, m);
-    if(is_border_edge(h, m) || is_feature(e)) continue;
-    const auto [d2, p] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m)));
-    if(d2 > tol * tol) far_edges.push_back({d2, p, source(h, m), target(h, m)});
+  {
+    std::vector<halfedge_descriptor> hs;
+    for(auto e : edges(m)) {
+      const halfedge_descriptor h = halfedge(e, m);
+      if(!is_border_edge(h, m) && !is_feature(e)) hs.push_back(h);
+    }
+    std::vector<std::pair<double, Point_3>> nearest(hs.size());
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(hs.size(), [&](std::size_t i) {
+      const halfedge_descriptor h = hs[i];
+      nearest[i] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m)));
+    });
+    for(std::size_t i = 0; i < hs.size(); ++i)
+      if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m)});
   }
   if(far.empty() && far_edges.empty()) return 0;
   std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  const auto before = Poisson_remesh::internal::intersecting_pairs(m);   // intersections there already
+  const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);   // intersections there already
   if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
   std::set<face_descriptor> touched;
   std::vector<vertex_descriptor> mine;
@@ -135,6 +169,8 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     mine.push_back(v);
   }
   // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
+  // (in the order of insertion, not of the descriptors: a Polyhedron_3's are addresses)
+  const std::vector<vertex_descriptor> inserted = mine;
   std::sort(mine.begin(), mine.end());
   std::vector<vertex_descriptor> undo;
   ctx.for_vertices_of_new_intersections(m, before, Poisson_remesh::internal::faces_around(m, mine), [&](vertex_descriptor x) {
@@ -143,11 +179,12 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::sort(undo.begin(), undo.end());
   undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
   std::vector<std::pair<Point_3, typename GT::halfedge_descriptor>> retry;   // (a halfedge of the triangle it was in)
-  for(vertex_descriptor v : undo) {
+  for(vertex_descriptor v : inserted) {
+    if(!std::binary_search(undo.begin(), undo.end(), v)) continue;
     const Point_3 p = get(vpm, v);
     retry.push_back({p, CGAL::Euler::remove_center_vertex(halfedge(v, m), m)});
   }
-  for(vertex_descriptor v : mine)
+  for(vertex_descriptor v : inserted)
     if(!std::binary_search(undo.begin(), undo.end(), v)) {
       new_vertex(v, false);
       added.push_back(v);

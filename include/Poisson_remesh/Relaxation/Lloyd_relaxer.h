@@ -81,8 +81,11 @@ struct Relaxation_settings
 /// projection onto the input, Delaunay and valence flips, then the operators beyond the paper
 /// (`Relaxation_settings`). Built on the input mesh and its features; relax() works in place on
 /// a mesh whose vertices lie on the input (the mutual tessellation). `GeomTraits`: the kernel of
-/// the input's points.
-template <class InputMesh, class GeomTraits>
+/// the input's points. `ConcurrencyTag`: CGAL::Sequential_tag (the default), or CGAL::Parallel_tag
+/// (CGAL::Parallel_if_available_tag: when TBB is linked) for the parallel mode, in which the
+/// vertex passes (Lloyd steps, angle smoothing and optimization) and the fidelity distance queries
+/// run on TBB's threads; the result is the same in both modes and for any number of threads.
+template <class InputMesh, class GeomTraits, class ConcurrencyTag = CGAL::Sequential_tag>
 class Lloyd_relaxer
 {
   typedef typename GeomTraits::Point_3 Point_3;
@@ -179,7 +182,7 @@ public:
 
     // the paper's steps
     auto lloyd = [&](auto fixed) {
-      clock.timed(T.lloyd, [&] { Relaxation::lloyd_pass(ctx, mesh, is_feature, fixed, stats, vertex_density, area_weighted_, P::Lloyd_guard<Context>{ctx, s.lloyd_guard}); });
+      clock.timed(T.lloyd, [&] { Relaxation::lloyd_pass<ConcurrencyTag>(ctx, mesh, is_feature, fixed, stats, vertex_density, area_weighted_, P::Lloyd_guard<Context>{ctx, s.lloyd_guard}); });
     };
     auto delaunay = [&](bool keep) {
       clock.timed(T.delaunay_flips, [&] { Relaxation::delaunay_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.sliver_angle, stats, keep); });
@@ -198,12 +201,12 @@ public:
     // the operators beyond the paper, each a round of its own
     auto fidelity = [&]() -> std::size_t {
       if constexpr(may_add)
-        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points(ctx, mesh, is_feature, new_vertex, s.fidelity, stats, pinned); }) : 0;
+        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points<ConcurrencyTag>(ctx, mesh, is_feature, new_vertex, s.fidelity, stats, pinned); }) : 0;
       else return 0;
     };
     auto optimize_angles = [&] {
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it) {
-        if(clock.timed(T.angle_optimization, [&] { return P::optimize_angles(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats); }) == 0) break;
+        if(clock.timed(T.angle_optimization, [&] { return P::optimize_angles<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats); }) == 0) break;
         final_delaunay(keep_regularity);
       }
     };
@@ -216,7 +219,7 @@ public:
         }
     };
     P::Angle_smoothing_memory<Mesh> smoothing_memory;   // (no vertex is added or removed between the smoothing rounds)
-    auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles(ctx, mesh, is_feature, is_fixed, stats, &smoothing_memory); }); };
+    auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, stats, &smoothing_memory); }); };
     auto untangle = [&](std::size_t* collapses) {
       for(unsigned int round = 0; round < s.untangling.rounds; ++round)
         if(clock.timed(T.untangling, [&] { return P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses); }) == 0) break;
@@ -265,7 +268,7 @@ public:
     report("optimization", 6, optimization_steps);
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it)
-        if(clock.timed(T.pinned_optimization, [&] { return P::optimize_pinned_vertices(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_anchor); }) == 0)
+        if(clock.timed(T.pinned_optimization, [&] { return P::optimize_pinned_vertices<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_anchor); }) == 0)
           break;
     report("optimization", 7, optimization_steps);
     std::size_t collapses = 0;

@@ -7,13 +7,15 @@
 // surface (closest point, CGAL AABB tree), so vertices always lie on the input. A feature vertex
 // (two incident feature edges) slides along its curve to the midpoint of its two feature
 // neighbours, projected onto the input's feature edges; corners and vertices where features meet
-// do not move. A move that would fold an incident triangle is refused.
+// do not move. A move that would fold an incident triangle is refused. With CGAL::Parallel_tag the
+// vertices whose earlier neighbours have moved move at once, with the sequential pass's result.
 
 #ifndef POISSON_REMESH_RELAXATION_LLOYD_STEP_H
 #define POISSON_REMESH_RELAXATION_LLOYD_STEP_H
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/parallel.h>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -102,18 +104,40 @@ bool lloyd_target(const Context& ctx, typename boost::graph_traits<Mesh>::vertex
 /// One Lloyd pass over the vertices of `m`: each movable vertex moves to its Lloyd target (a free
 /// vertex, projected onto the input; a feature vertex, along its curve), unless the move folds a
 /// triangle or `guard(v, m, feature_degree, max_jump, target)` refuses it (it may also shorten it).
-template <class Context, class Mesh, class IsFeatureEdge, class IsCorner, class VertexDensity, class Guard>
+/// The vertices move in the order of vertices(m), one by one; with `ConcurrencyTag` =
+/// CGAL::Parallel_tag, in rounds of vertices whose earlier neighbours have moved
+/// (internal/parallel.h), each round at once: the same result for any number of threads, and in
+/// both modes. `is_feature`, `is_corner`, `vertex_density` and `guard` are then called from several
+/// threads; they must only read.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class VertexDensity, class Guard>
 void lloyd_pass(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Relaxation_statistics& stats,
                 VertexDensity vertex_density, bool area_weighted, Guard guard)
 {
   typedef typename Context::Point_3 Point_3;
-  for(auto v : vertices(m)) {
-    if(is_corner(v)) continue;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  constexpr bool uniform = std::is_same<VertexDensity, Unit_density>::value;
+  // (the density read before the moves, in the order in which the moves below read it: a
+  // caller's density may fill itself in lazily, in that order, which several threads may not do
+  // at once; it depends on the connectivity alone, which the moves keep)
+  auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), m);
+  if constexpr(!uniform)
+    for(vertex_descriptor v : vertices(m)) {
+      if(is_corner(v) || ctx.feature_degree(v, m, is_feature) != 0) continue;
+      for(auto h : CGAL::halfedges_around_target(v, m)) put(density_map, source(h, m), vertex_density(source(h, m)));
+      put(density_map, v, vertex_density(v));
+    }
+  auto density = [&](vertex_descriptor v) { return get(density_map, v); };
+  enum Outcome : char { unmoved, moved, refused };
+  auto move = [&](vertex_descriptor v) -> Outcome {
+    if(is_corner(v)) return unmoved;
     const std::size_t fd = ctx.feature_degree(v, m, is_feature);
     Point_3 target;
     double max_jump = 0;   // (a free vertex: how far its projection onto the input may jump)
     if(fd == 0) {
-      if(!lloyd_target(ctx, v, m, target, vertex_density, area_weighted)) continue;
+      bool found;
+      if constexpr(uniform) found = lloyd_target(ctx, v, m, target, vertex_density, area_weighted);
+      else found = lloyd_target(ctx, v, m, target, density, area_weighted);
+      if(!found) return unmoved;
       // the closest point of the input must be the local one: in thin parts (horns, legs, tails)
       // the other side can be closer; a projection farther than a fraction of the ring's size
       // is refused (the paper projects through a local parameterization for the same reason)
@@ -125,10 +149,7 @@ void lloyd_pass(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner 
         ++nr;
       }
       if(nr > 0) max_jump = 0.25 * ring / double(nr);
-      if(nr == 0 || CGAL::to_double(CGAL::squared_distance(projected, target)) > CGAL::square(max_jump)) {
-        ++stats.refused_moves;
-        continue;
-      }
+      if(nr == 0 || CGAL::to_double(CGAL::squared_distance(projected, target)) > CGAL::square(max_jump)) return refused;
       target = projected;
     } else if(fd == 2) {
       std::vector<Point_3> ends;
@@ -136,13 +157,25 @@ void lloyd_pass(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner 
         if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) ends.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
       target = ctx.project_on_features(CGAL::midpoint(ends[0], ends[1]), get(get(CGAL::vertex_point, m), v));
     } else {
-      continue;
+      return unmoved;
     }
-    if(ctx.folds(v, m, target)) { ++stats.refused_moves; continue; }
+    if(ctx.folds(v, m, target)) return refused;
     // (beyond the paper: Postprocessing/lloyd_guard.h)
-    if(!guard(v, m, fd, max_jump, target)) { ++stats.refused_moves; continue; }
+    if(!guard(v, m, fd, max_jump, target)) return refused;
+    // (no other vertex of this round reads v's point: it is in none of their rings)
     put(get(CGAL::vertex_point, m), v, target);
-    ++stats.moves;
+    return moved;
+  };
+  std::vector<Outcome> outcome;
+  std::vector<vertex_descriptor> movable;
+  for(vertex_descriptor v : vertices(m)) if(!is_corner(v)) movable.push_back(v);
+  for(const auto& round : internal::dependency_rounds(m, movable)) {
+    outcome.assign(round.size(), unmoved);
+    internal::for_each_index<ConcurrencyTag>(round.size(), [&](std::size_t i) { outcome[i] = move(round[i]); });
+    for(Outcome o : outcome) {
+      if(o == moved) ++stats.moves;
+      if(o == refused) ++stats.refused_moves;
+    }
   }
 }
 

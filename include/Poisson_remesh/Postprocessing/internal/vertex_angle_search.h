@@ -8,6 +8,7 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/parallel.h>
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -37,8 +38,12 @@ namespace internal {
 /// (not null), the digest of each vertex's star -- its point, its ring's points, border and
 /// feature flags and tip scales, its movability -- is kept when its search moves nothing, and a
 /// vertex whose star has the same digest at the next call is not searched again: its search
-/// would find the same nothing (repeated smoothing rounds). Returns the number of vertices moved.
-template <class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
+/// would find the same nothing (repeated smoothing rounds). With `ConcurrencyTag` =
+/// CGAL::Parallel_tag the vertices search in rounds of vertices whose earlier neighbours have
+/// searched (internal/parallel.h), each round at once: the same result as in sequence, for any
+/// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
+/// the number of vertices moved.
+template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
                                 PinAnchor pin_anchor, bool pinned_only,
@@ -63,15 +68,16 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   };
   if(smoothing) {
     for(vertex_descriptor x : vertices(m)) if(movability(x) < 2) todo.push_back(x);
-  } else {
+  } else {   // (in the order of vertices(m), not of the descriptors: a Polyhedron_3's are addresses)
+    auto at_sharp = get(CGAL::dynamic_vertex_property_t<bool>(), m);
+    for(vertex_descriptor x : vertices(m)) put(at_sharp, x, false);
     for(auto f : faces(m)) {
       const auto h = halfedge(f, m);
       const vertex_descriptor v[3] = {source(h, m), target(h, m), target(next(h, m), m)};
       if(ctx.min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sharp) continue;
-      for(vertex_descriptor x : v) if(movability(x) < 2) todo.push_back(x);
+      for(vertex_descriptor x : v) put(at_sharp, x, true);
     }
-    std::sort(todo.begin(), todo.end());
-    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    for(vertex_descriptor x : vertices(m)) if(get(at_sharp, x) && movability(x) < 2) todo.push_back(x);
   }
   // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
   // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
@@ -96,21 +102,6 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   };
   std::size_t moved = 0;
   std::vector<std::pair<vertex_descriptor, Point_3>> from;   // where the moved vertices were
-  // the triangles around the vertex being moved, read once for its whole search (its neighbours
-  // stay where they are meanwhile): Context::smallest_angles_around() without walking the mesh
-  // for each trial point, the same figures
-  struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
-  std::vector<Ring_triangle> ring;
-  auto smallest_angles_around = [&](const Point_3& at) -> std::pair<double, double> {
-    double worst = CGAL_PI, sum = 0;
-    for(const Ring_triangle& t : ring) {
-      const double x = ctx.star_triangle_angle(t.a, at, t.b, t.n, t.ln, t.sa, t.sb);
-      if(x < 0) return {-1, -1};
-      worst = std::min(worst, x);
-      sum += x;
-    }
-    return {worst, sum};
-  };
   auto mix = [](std::uint64_t h, double x) {   // (splitmix64 of the bits, folded into h)
     std::uint64_t z;
     std::memcpy(&z, &x, sizeof z);
@@ -130,19 +121,17 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     }
     return h | 1;
   };
-  for(vertex_descriptor v : todo) {
-    const int c = movability(v);
-    const Point_3* anchor = pinned_only ? pin_anchor(v) : nullptr;
+  // the search from v's point: where v should go (its point when nowhere better); `c` its
+  // movability, `anchor` its pin (pinned_only). It reads v's star alone, so that vertices that are
+  // not neighbours can search at the same time with the same results.
+  auto search = [&](vertex_descriptor v, int c, const Point_3* anchor) -> Point_3 {
     const Point_3 start = get(vpm, v);
     Point_3 p = start;
-    if(unmoved != nullptr) {
-      const std::uint64_t digest = digest_of_star(v, c);
-      auto it = unmoved->find(v);
-      if(it != unmoved->end() && it->second == digest) { ++stats.unchanged_stars; continue; }
-      // (remembered unless the search below moves the vertex)
-      if(it == unmoved->end()) unmoved->emplace(v, digest);
-      else it->second = digest;
-    }
+    // the triangles around the vertex being moved, read once for its whole search (its
+    // neighbours stay where they are meanwhile): Context::smallest_angles_around() without
+    // walking the mesh for each trial point, the same figures
+    struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
+    thread_local std::vector<Ring_triangle> ring;
     ring.clear();
     for(auto h : CGAL::halfedges_around_target(v, m)) {
       if(is_border(h, m)) continue;
@@ -151,6 +140,16 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       t.ln = std::sqrt(CGAL::to_double(t.n.squared_length()));
       ring.push_back(t);
     }
+    auto smallest_angles_around = [&](const Point_3& at) -> std::pair<double, double> {
+      double worst = CGAL_PI, sum = 0;
+      for(const Ring_triangle& t : ring) {
+        const double x = ctx.star_triangle_angle(t.a, at, t.b, t.n, t.ln, t.sa, t.sb);
+        if(x < 0) return {-1, -1};
+        worst = std::min(worst, x);
+        sum += x;
+      }
+      return {worst, sum};
+    };
     const double floor = smallest_angles_around(p).first;
     auto objective = [&](const Point_3& q) {
       const auto [smallest, sum] = smallest_angles_around(q);
@@ -158,7 +157,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       return smallest < floor ? -1.0 : sum;
     };
     double best = objective(p);
-    if(best < 0) continue;
+    if(best < 0) return start;
     // directions: the tangent plane (8 of them), or along the feature curve (2)
     std::vector<Vector_3> dirs;
     double mean = 0;
@@ -174,14 +173,14 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       }
       if(!is_border(h, m)) nv = nv + ctx.normal(a, p, get(vpm, target(next(h, m), m)));
     }
-    if(n == 0) continue;
+    if(n == 0) return start;
     mean /= double(n);
     // (one feature edge: the vertex may be the loose end of a curve at a tip, it moves little)
     const bool loose_end = c == 1 && dirs.size() == 1;
     if(loose_end) dirs.push_back(-dirs[0]);
     if(c == 0) {
       const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
-      if(!(ln > 0)) continue;
+      if(!(ln > 0)) return start;
       const Vector_3 nn = nv / ln;
       Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
       if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
@@ -189,7 +188,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       const Vector_3 w = CGAL::cross_product(nn, u);
       for(int k = 0; k < 8; ++k) dirs.push_back(std::cos(k * CGAL_PI / 4) * u + std::sin(k * CGAL_PI / 4) * w);
     }
-    if(dirs.empty()) continue;
+    if(dirs.empty()) return start;
     // (a bounded number of steps: where gains never stop, however small -- a flat sheet folded
     // onto itself -- the step would never shrink)
     const bool in_plane = smoothing && c == 0;
@@ -213,11 +212,40 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       p = ctx.project_on_surface(p, start);
       if(!(objective(p) > objective(start))) p = start;
     }
-    if(p != start) {
-      put(vpm, v, p);
-      from.push_back({v, start});
-      ++moved;
-      if(unmoved != nullptr) unmoved->erase(v);   // (taken back below or not: searched again)
+    return p;
+  };
+  // in the order of `todo`; with CGAL::Parallel_tag, in rounds of vertices whose earlier
+  // neighbours have searched (internal/parallel.h), each round at once, what they found taken in
+  // in order after it: the sequential search's result
+  struct Found { vertex_descriptor v; int c; const Point_3* anchor; std::uint64_t digest; bool unchanged; Point_3 start, p; };
+  std::vector<Found> found;
+  for(const auto& round : Poisson_remesh::internal::dependency_rounds(m, todo)) {
+    found.clear();
+    for(vertex_descriptor v : round) {
+      // (sequential: pin_anchor may remember the pin)
+      const int c = movability(v);
+      found.push_back(Found{v, c, pinned_only ? pin_anchor(v) : nullptr, 0, false, get(vpm, v), get(vpm, v)});
+    }
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(found.size(), [&](std::size_t i) {
+      Found& x = found[i];
+      if(unmoved != nullptr) {
+        x.digest = digest_of_star(x.v, x.c);
+        const auto it = unmoved->find(x.v);
+        if(it != unmoved->end() && it->second == x.digest) { x.unchanged = true; return; }
+      }
+      x.p = search(x.v, x.c, x.anchor);
+      // (no other vertex of this round reads v's point: it is in none of their rings)
+      if(x.p != x.start) put(vpm, x.v, x.p);
+    });
+    for(const Found& x : found) {
+      if(x.unchanged) { ++stats.unchanged_stars; continue; }
+      if(x.p != x.start) {
+        from.push_back({x.v, x.start});
+        ++moved;
+        if(unmoved != nullptr) unmoved->erase(x.v);   // (taken back below or not: searched again)
+      } else if(unmoved != nullptr) {
+        (*unmoved)[x.v] = x.digest;   // (its search moved nothing: not searched again while its star stays)
+      }
     }
   }
   // a move may not make the mesh cut itself (thin parts): the moved vertices of triangles
@@ -229,7 +257,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const auto changed = Poisson_remesh::internal::faces_around(m, movers);
     for(int round = 0; round < 8; ++round) {
       std::size_t back = 0;
-      const std::size_t crossing = ctx.for_vertices_of_new_intersections_after_moves(m, from, changed, [&](vertex_descriptor x) {
+      const std::size_t crossing = ctx.template for_vertices_of_new_intersections_after_moves<ConcurrencyTag>(m, from, changed, [&](vertex_descriptor x) {
         auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
         if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
       });
@@ -249,12 +277,12 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
 }
 
 /// The same without pinned vertices.
-template <class Context, class Mesh, class IsFeatureEdge, class IsCorner>
+template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
                                 std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr)
 {
-  return vertex_angle_search(ctx, m, is_feature, is_corner, goal, optimized_angle, sliver_angle, max_deviation, stats,
+  return vertex_angle_search<ConcurrencyTag>(ctx, m, is_feature, is_corner, goal, optimized_angle, sliver_angle, max_deviation, stats,
                              [](typename boost::graph_traits<Mesh>::vertex_descriptor) -> const typename Context::Point_3* { return nullptr; }, false,
                              unmoved);
 }

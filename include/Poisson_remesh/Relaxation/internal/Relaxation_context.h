@@ -12,6 +12,7 @@
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/internal/feature_curves.h>
+#include <Poisson_remesh/internal/parallel.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -39,19 +40,26 @@ using Face_pairs = std::vector<std::pair<typename boost::graph_traits<Mesh>::fac
 
 // the intersecting face pairs among the faces of `range` (all of m's by default), each (smaller,
 // larger), sorted; the search stops past twice the face count (a mesh that cuts itself
-// everywhere: folded input)
-template <class Mesh, class FaceRange>
+// everywhere: folded input). With CGAL::Parallel_tag, CGAL's parallel search; where it stops at
+// the bound (it may return more pairs, and which depends on the threads) the sequential search is
+// run instead, so that the pairs never depend on the number of threads.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 {
   Face_pairs<Mesh> pairs;
-  CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs),
-                                                    CGAL::parameters::maximum_number(unsigned(2 * num_faces(m) + 1)));
+  const unsigned bound = unsigned(2 * num_faces(m) + 1);
+  if constexpr(is_parallel<ConcurrencyTag>()) {
+    CGAL::Polygon_mesh_processing::self_intersections<CGAL::Parallel_tag>(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
+    if(pairs.size() >= bound) pairs.clear();
+  }
+  if(pairs.empty())
+    CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
   for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
-template <class Mesh>
-Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m, faces(m)); }
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh>
+Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs<ConcurrencyTag>(m, faces(m)); }
 
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
@@ -59,7 +67,7 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs(m
 // CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round was a tenth of
 // the remesh's time); when most faces changed, the whole mesh's pairs (a superset: the box
 // search would only repeat self_intersections' own).
-template <class Mesh, class FaceRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange>
 Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
@@ -71,7 +79,7 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
   };
   const auto n = std::size_t(std::distance(std::begin(changed), std::end(changed)));
   if(n == 0) return {};
-  if(2 * n > num_faces(m)) return intersecting_pairs(m);
+  if(2 * n > num_faces(m)) return intersecting_pairs<ConcurrencyTag>(m);
   std::vector<Box> mine;
   for(face_descriptor f : changed) mine.push_back(box_of(f));
   // (each changed face meets its own box, so it is in `near` too)
@@ -124,7 +132,7 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
   }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
-  return intersecting_pairs(m, near);
+  return intersecting_pairs<ConcurrencyTag>(m, near);
 }
 
 // the faces around the vertices of a range, sorted, each once
@@ -295,11 +303,12 @@ public:
   // those pairs alone, with the vertices put back for a moment: no check of the whole earlier
   // state (most often nothing intersects now and nothing more is asked). Returns the number of
   // pairs that intersect now near `changed`.
-  template <class Mesh, class Moved, class FaceRange, class F>
+  // (`ConcurrencyTag`: the searches' mode, see intersecting_pairs)
+  template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class Moved, class FaceRange, class F>
   std::size_t for_vertices_of_new_intersections_after_moves(Mesh& m, const Moved& moved, const FaceRange& changed, F f) const
   {
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-    const auto now = internal::intersecting_pairs_near(m, changed);
+    const auto now = internal::intersecting_pairs_near<ConcurrencyTag>(m, changed);
     if(now.empty()) return 0;
     std::vector<face_descriptor> involved;
     for(const auto& fp : now) { involved.push_back(fp.first); involved.push_back(fp.second); }
@@ -309,7 +318,7 @@ public:
     std::vector<Point_3> current;
     current.reserve(moved.size());
     for(const auto& x : moved) { current.push_back(get(vpm, x.first)); put(vpm, x.first, x.second); }
-    const auto before = internal::intersecting_pairs(m, involved);
+    const auto before = internal::intersecting_pairs<ConcurrencyTag>(m, involved);
     for(std::size_t i = 0; i < moved.size(); ++i) put(vpm, moved[i].first, current[i]);
     for_vertices_of_pairs_not_in(m, now, before, f);
     return now.size();
