@@ -169,8 +169,6 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     mine.push_back(v);
   }
   // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
-  // (in the order of insertion, not of the descriptors: a Polyhedron_3's are addresses)
-  const std::vector<vertex_descriptor> inserted = mine;
   std::sort(mine.begin(), mine.end());
   std::vector<vertex_descriptor> undo;
   ctx.for_vertices_of_new_intersections(m, before, Poisson_remesh::internal::faces_around(m, mine), [&](vertex_descriptor x) {
@@ -179,12 +177,11 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::sort(undo.begin(), undo.end());
   undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
   std::vector<std::pair<Point_3, typename GT::halfedge_descriptor>> retry;   // (a halfedge of the triangle it was in)
-  for(vertex_descriptor v : inserted) {
-    if(!std::binary_search(undo.begin(), undo.end(), v)) continue;
+  for(vertex_descriptor v : undo) {
     const Point_3 p = get(vpm, v);
     retry.push_back({p, CGAL::Euler::remove_center_vertex(halfedge(v, m), m)});
   }
-  for(vertex_descriptor v : inserted)
+  for(vertex_descriptor v : mine)
     if(!std::binary_search(undo.begin(), undo.end(), v)) {
       new_vertex(v, false);
       added.push_back(v);
