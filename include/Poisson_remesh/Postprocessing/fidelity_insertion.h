@@ -112,41 +112,39 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   take_far();
   // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
   // groove) takes the input's point nearest to it; an edge whose midpoint is, is split there
-  // (the input point nearest c, and its squared distance to c)
-  // (the search starts from `hint`, a vertex of the mesh: on the input, and near c)
-  auto nearest_on_input = [&](const Point_3& c, const Point_3& hint) {
-    const Point_3 p = ctx.project_on_surface(c, hint);
-    return std::make_pair(CGAL::to_double(CGAL::squared_distance(c, p)), p);
-  };
-  {
-    std::vector<face_descriptor> fs(faces(m).first, faces(m).second);
-    std::vector<std::pair<double, Point_3>> nearest(fs.size());
-    std::vector<char> kept(fs.size(), 0);
-    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
-      const auto h = halfedge(fs[i], m);
-      nearest[i] = nearest_on_input(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m)));
-      // (not when that input point is near the mesh elsewhere: the other side of a thin part)
-      kept[i] = nearest[i].first > tol * tol && CGAL::to_double(tree.squared_distance(nearest[i].second)) > tol * tol;
+  // (for each (c, hint) of `points`, the input point nearest c and its squared distance to c,
+  // in the order of `points`, in parallel with CGAL::Parallel_tag; the search starts from `hint`,
+  // a vertex of the mesh: on the input, and near c)
+  auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
+    std::vector<std::pair<double, Point_3>> nearest(points.size());
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(points.size(), [&](std::size_t i) {
+      const Point_3 p = ctx.project_on_surface(points[i].first, points[i].second);
+      nearest[i] = {CGAL::to_double(CGAL::squared_distance(points[i].first, p)), p};
     });
-    for(std::size_t i = 0; i < fs.size(); ++i) if(kept[i]) far.push_back(nearest[i]);
+    return nearest;
+  };
+  std::vector<std::pair<Point_3, Point_3>> points;   // (the point, and a vertex of the mesh near it)
+  for(face_descriptor f : faces(m)) {
+    const auto h = halfedge(f, m);
+    points.push_back({CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m))});
   }
+  for(const auto& [d2, p] : nearest_on_input(points))
+    // (not when that input point is near the mesh elsewhere: the other side of a thin part)
+    if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor>> far_edges;
-  {
-    std::vector<halfedge_descriptor> hs;
-    for(auto e : edges(m)) {
-      const halfedge_descriptor h = halfedge(e, m);
-      if(!is_border_edge(h, m) && !is_feature(e)) hs.push_back(h);
-    }
-    std::vector<std::pair<double, Point_3>> nearest(hs.size());
-    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(hs.size(), [&](std::size_t i) {
-      const halfedge_descriptor h = hs[i];
-      nearest[i] = nearest_on_input(CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m)));
-    });
-    for(std::size_t i = 0; i < hs.size(); ++i)
-      if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m)});
+  std::vector<halfedge_descriptor> hs;
+  points.clear();
+  for(auto e : edges(m)) {
+    const halfedge_descriptor h = halfedge(e, m);
+    if(is_border_edge(h, m) || is_feature(e)) continue;
+    hs.push_back(h);
+    points.push_back({CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m))});
   }
+  const auto nearest = nearest_on_input(points);
+  for(std::size_t i = 0; i < hs.size(); ++i)
+    if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m)});
   if(far.empty() && far_edges.empty()) return 0;
   std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);   // intersections there already

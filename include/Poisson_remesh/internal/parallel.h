@@ -69,9 +69,9 @@ void for_each_index(std::size_t n, F f)
 /// vertices at once gives what moving them one by one in `order` gives, when a vertex's move reads
 /// only its one-ring: a vertex's round comes after the rounds of its neighbours earlier in `order`
 /// (their moves are seen) and before those of its neighbours later in it (theirs are not). No two
-/// vertices of a round are neighbours. Each round keeps the order of `order`. (On the
-/// tessellation's meshes, whose vertices are numbered as the sampling front grew, 20 to 60 rounds
-/// for 2,700 to 37,000 vertices.)
+/// vertices of a round are neighbours. Each round keeps the order of `order`. (The tessellation
+/// numbers the vertices as the sampling front grew: a chain of neighbours in ascending order is
+/// short, so the rounds are few and large.)
 template <class Mesh, class VertexRange>
 std::vector<std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>> dependency_rounds(const Mesh& m, const VertexRange& order)
 {

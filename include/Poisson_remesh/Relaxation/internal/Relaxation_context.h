@@ -48,11 +48,13 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 {
   Face_pairs<Mesh> pairs;
   const unsigned bound = unsigned(2 * num_faces(m) + 1);
+  bool found = false;
   if constexpr(is_parallel<ConcurrencyTag>()) {
     CGAL::Polygon_mesh_processing::self_intersections<CGAL::Parallel_tag>(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
-    if(pairs.size() >= bound) pairs.clear();
+    found = pairs.size() < bound;
+    if(!found) pairs.clear();
   }
-  if(pairs.empty())
+  if(!found)
     CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
   for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
   std::sort(pairs.begin(), pairs.end());
