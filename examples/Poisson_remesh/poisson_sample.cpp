@@ -7,6 +7,10 @@
 
 #include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
 #include <Poisson_remesh/read_surface_mesh.h>
 #include <Poisson_remesh/write_surface_mesh.h>
 
@@ -34,6 +38,8 @@ static const char* usage =
   "  --kinds           add a fourth column: 0 corner, 1 feature, 2 surface\n"
   "  --radii           add a column with each sample's disk radius r (samples p, q are at least\n"
   "                    r(p) + r(q) apart; with adaptive density r varies)\n"
+  "  --threads N       the parallel mode on N threads (slabs of the surface filled at once): another\n"
+  "                    maximal set than the default sequential one, the same for any N\n"
   "  --help            this text\n"
   "%s"
   "  (with a density, --spacing D sets the count that uniform spacing D would give)\n"
@@ -46,7 +52,7 @@ int main(int argc, char** argv)
   double vertices = 0, spacing = 0, angle = 60;
   bool features = true, kinds = false, radii = false;
   cli::Density_options density;
-  unsigned long seed = 0;
+  unsigned long seed = 0, threads = 0;
   try {
     cli::Arguments args(argc, argv);
     while(!args.done()) {
@@ -58,6 +64,10 @@ int main(int argc, char** argv)
       else if(a == "--spacing") spacing = args.number(a, 0);
       else if(a == "--seed") seed = args.whole_number(a);
       else if(a == "--kinds") kinds = true;
+      else if(a == "--threads") {
+        threads = args.whole_number(a);
+        if(threads == 0) throw cli::Usage_error("--threads needs at least 1");
+      }
       else if(a == "--features") {
         const std::string v = args.value(a);
         if(v == "none") features = false;
@@ -95,10 +105,17 @@ int main(int argc, char** argv)
   auto np = PR::parameters::random_seed(unsigned(seed))
               .feature_policy(features ? PR::Feature_policy::detect : PR::Feature_policy::none)
               .sharp_angle(angle);
+  // (--threads: the parallel mode, on that many of TBB's threads)
+#ifdef CGAL_LINKED_WITH_TBB
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, std::max<std::size_t>(1, threads));
+#endif
   auto run = [&](const auto& field) {
-    return spacing > 0
-      ? PR::poisson_disk_sample(mesh, std::back_inserter(samples), np.sampling_radius(0.5 * spacing).density(field))
-      : PR::poisson_disk_sample(mesh, std::back_inserter(samples), np.target_vertex_count(std::size_t(vertices)).density(field));
+    auto sample = [&](const auto& named) {
+      if(threads > 0) return PR::poisson_disk_sample<CGAL::Parallel_if_available_tag>(mesh, std::back_inserter(samples), named);
+      return PR::poisson_disk_sample(mesh, std::back_inserter(samples), named);
+    };
+    return spacing > 0 ? sample(np.sampling_radius(0.5 * spacing).density(field))
+                       : sample(np.target_vertex_count(std::size_t(vertices)).density(field));
   };
   const PR::Poisson_disk_sampling_result result = cli::with_density(density, mesh, user_density, run);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

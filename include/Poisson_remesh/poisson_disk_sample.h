@@ -11,6 +11,7 @@
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/Sampling/Boundary_sampler.h>
+#include <Poisson_remesh/Sampling/internal/slab_sampling.h>
 #include <Poisson_remesh/density_fields.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/progress.h>
@@ -185,7 +186,10 @@ decltype(auto) with_geodesic_oracle(const TriangleMesh& tm, VPM vpm, const Named
     return f(unwrap(parameters::get_parameter(np, internal_np::geodesic_oracle)));
 }
 
-template <class TriangleMesh, class VPM, class OutputIterator, class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VPM>>
+// (ConcurrencyTag: with CGAL::Parallel_tag and the default oracle, the surface fills by slabs in
+// parallel, Sampling/internal/slab_sampling.h, when it is long enough to cut)
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class VPM, class OutputIterator,
+          class GeodesicOracle = Exact_geodesic_oracle<TriangleMesh, VPM>>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm, const Feature_set<TriangleMesh>& fs,
                                                  double radius, unsigned int seed, OutputIterator out,
                                                  const std::vector<double>& vertex_radii = std::vector<double>(),
@@ -207,24 +211,35 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
   std::vector<std::size_t> crowded_samples;
   internal::sample_features(sampler, tm, vpm, fs, true, result, crowded_curves, &crowded_samples);
   sampler.seed_components();
-  if(progress != nullptr && progress->active()) {
+  const bool report = progress != nullptr && progress->active();
+  std::size_t expected = 0;
+  if(report) {
     // the count Eq. 1 expects at the median radius (adaptive: roughly)
     const double area = CGAL::to_double(CGAL::Polygon_mesh_processing::area(tm, CGAL::parameters::vertex_point_map(vpm)));
-    const std::size_t expected = std::size_t(paper_rho * paper_rho * area / (2 * std::sqrt(3.0) * radius * radius)) + 1;
+    expected = std::size_t(paper_rho * paper_rho * area / (2 * std::sqrt(3.0) * radius * radius)) + 1;
     (*progress)("sampling", sampler.samples().size(), expected);
-    sampler.fill([&](std::size_t n) { (*progress)("sampling", n, expected); });
-  } else {
-    sampler.fill();
+  }
+  auto on_sample = [&](std::size_t n) { if(report) (*progress)("sampling", n, expected); };
+  std::vector<typename decltype(sampler)::Sample> samples;
+  result.statistics = sampler.statistics();
+  bool by_slabs = false;
+  if constexpr(is_parallel<ConcurrencyTag>() && std::is_same<GeodesicOracle, Exact_geodesic_oracle<TriangleMesh, VPM>>::value) {
+    samples = sampler.samples();
+    by_slabs = fill_by_slabs<ConcurrencyTag>(tm, vpm, radius, vertex_radii, seed, samples, result.statistics, on_sample);
+  }
+  if(!by_slabs) {
+    sampler.fill(on_sample);
+    samples = sampler.samples();
+    result.statistics = sampler.statistics();
   }
   // the samples of crowded curves are surface samples (the caller drops those curves)
   std::sort(crowded_samples.begin(), crowded_samples.end());
-  for(std::size_t i = 0; i < sampler.samples().size(); ++i) {
-    auto s = sampler.samples()[i];
+  for(std::size_t i = 0; i < samples.size(); ++i) {
+    auto s = samples[i];
     if(std::binary_search(crowded_samples.begin(), crowded_samples.end(), i)) { s.kind = Sample_kind::surface; --result.number_of_feature_samples; }
     *out++ = s;
   }
-  result.number_of_samples = sampler.samples().size();
-  result.statistics = sampler.statistics();
+  result.number_of_samples = samples.size();
   return result;
 }
 
@@ -269,9 +284,18 @@ struct Poisson_disk_sampler
   - `geodesic_oracle`: a model of `GeodesicOracle` built on `tm` and read through the same point
     map (default: an `Exact_geodesic_oracle`); the sampler works on a copy of it
   - `progress` (a callable `bool(const Progress&)`) and `callback` (CGAL; `bool(double)`): told
-    how far the sampling is; returning false stops it with Cancelled (progress.h)
+    how far the sampling is; returning false stops it with Cancelled (progress.h); in parallel
+    mode the counts come after each phase of the slabs
+
+  `ConcurrencyTag`: CGAL::Sequential_tag (the default), or CGAL::Parallel_tag (needs TBB) /
+  CGAL::Parallel_if_available_tag: the surface is cut into slabs across its longest side, which
+  fill on TBB's threads in phases (even slabs, then odd ones, until none has room left). The set is
+  as maximal and as separated as the sequential one, but another one: it depends on the seed and
+  not on the number of threads. A surface too short for three slabs at its sampling radius (fewer
+  than about 25 spacings along its longest side), or a user's `geodesic_oracle`, is sampled
+  sequentially.
 */
-template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputIterator out,
                                                  const NamedParameters& np = parameters::default_values())
 {
@@ -289,7 +313,7 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputI
   const Feature_set<TriangleMesh> features = internal::detect_features_at_radius(tm, radius, np);
   progress.set_span(0.05, 1.0);
   return internal::with_geodesic_oracle(tm, vpm, np, [&](const auto& oracle) {
-    return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii, nullptr, &progress, &oracle);
+    return internal::poisson_disk_sample<ConcurrencyTag>(tm, vpm, features, radius, seed, out, vertex_radii, nullptr, &progress, &oracle);
   });
 }
 

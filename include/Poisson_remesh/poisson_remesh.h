@@ -184,7 +184,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     progress.set_span(0.02, 0.3);
     if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value) {
       result.sampling = internal::with_geodesic_oracle(input, in_vpm, np, [&](const auto& oracle) {
-        return internal::poisson_disk_sample(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress, &oracle);
+        return internal::poisson_disk_sample<ConcurrencyTag>(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress, &oracle);
       });
     } else {   // the user's model of the Sampler concept
       const Feature_set<TriangleMesh>& fs = features;

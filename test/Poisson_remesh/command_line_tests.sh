@@ -52,6 +52,12 @@ check "same seed, same output" sh -c "'$poisson_remesh' --vertices 1200 --seed 2
 check "one thread, same output" sh -c "'$poisson_remesh' --vertices 1200 --seed 2 --threads 1 '$data/meshes/elephant.off' '$dir/ours3.off' >/dev/null && cmp -s '$dir/ours.off' '$dir/ours3.off'"
 check "no threads" run 2 "$poisson_remesh" --threads 0 "$data/meshes/elephant.off" "$dir/keep.off"
 check "names the rule" has err "--threads needs at least 1"
+# poisson_sample's parallel mode (slabs): one set for any number of threads, another than the
+# sequential sampler's
+check "sampler, 1 thread" run 0 "$poisson_sample" "$data/meshes/camel.off" "$dir/s1.xyz" --vertices 3000 --seed 3 --threads 1
+check "sampler, 2 threads, same set" sh -c "'$poisson_sample' '$data/meshes/camel.off' '$dir/s2.xyz' --vertices 3000 --seed 3 --threads 2 2>/dev/null && cmp -s '$dir/s1.xyz' '$dir/s2.xyz'"
+check "sampler, sequential, another set" sh -c "'$poisson_sample' '$data/meshes/camel.off' '$dir/s0.xyz' --vertices 3000 --seed 3 2>/dev/null && ! cmp -s '$dir/s1.xyz' '$dir/s0.xyz'"
+check "sampler, no threads" run 2 "$poisson_sample" "$data/meshes/camel.off" "$dir/s3.xyz" --vertices 3000 --threads 0
 # pointed tips sampled finer (feature grading), or not with --no-grading
 check "horn tips graded" run 0 "$poisson_remesh" --vertices 1500 --no-self-intersections "$data/meshes/triceratops.off" "$dir/graded.off"
 check "graded tips reported" has out "pointed tip(s)"

@@ -241,10 +241,11 @@ TEST_CASE("remeshing is deterministic for a given seed", "[remesh]")
 }
 
 #ifdef CGAL_LINKED_WITH_TBB
-TEST_CASE("the parallel mode gives the sequential output, whatever the number of threads", "[remesh][parallel]")
+TEST_CASE("the parallel relaxation gives the sequential output, and the parallel mode one output whatever the number of threads", "[remesh][parallel]")
 {
   // (the same points and the same faces: the parallel vertex passes move, at once, vertices whose
-  // earlier neighbours have moved)
+  // earlier neighbours have moved; the parallel mode samples by slabs, another maximal set than
+  // the sequential sampler's, so the sequential one is given to both as a user's sampler)
   auto same = [](const Mesh& a, const Mesh& b) {
     REQUIRE(num_vertices(a) == num_vertices(b));
     REQUIRE(num_faces(a) == num_faces(b));
@@ -267,7 +268,7 @@ TEST_CASE("the parallel mode gives the sequential output, whatever the number of
     INFO((adaptive ? "adaptive" : "uniform"));
     Mesh in, sequential;
     PR::read_surface_mesh(test_support::data_mesh(adaptive ? "meshes/elephant.off" : "meshes/fandisk.off"), in);
-    auto np = PR::parameters::target_vertex_count(1200).random_seed(2u);
+    auto np = PR::parameters::target_vertex_count(1200).random_seed(2u).sampler(PR::Poisson_disk_sampler());
     if(adaptive) PR::poisson_remesh(in, sequential, np.density(PR::Curvature_density()));
     else PR::poisson_remesh(in, sequential, np);
     for(const int threads : {1, 2, 4}) {
@@ -277,6 +278,23 @@ TEST_CASE("the parallel mode gives the sequential output, whatever the number of
       if(adaptive) PR::poisson_remesh<CGAL::Parallel_tag>(in, parallel, np.density(PR::Curvature_density()));
       else PR::poisson_remesh<CGAL::Parallel_tag>(in, parallel, np);
       same(sequential, parallel);
+    }
+  }
+  // the whole parallel mode (slab sampling too): one output for 1, 2 and 4 threads
+  {
+    Mesh in, one;
+    PR::read_surface_mesh(test_support::data_mesh("meshes/camel.off"), in);
+    const auto np = PR::parameters::target_vertex_count(3000).random_seed(4u);
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(1));
+      PR::poisson_remesh<CGAL::Parallel_tag>(in, one, np);
+    }
+    for(const int threads : {2, 4}) {
+      INFO(threads << " threads, whole parallel mode");
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+      Mesh parallel;
+      PR::poisson_remesh<CGAL::Parallel_tag>(in, parallel, np);
+      same(one, parallel);
     }
   }
   // the rounds behind it: every vertex in one, after the rounds of its neighbours earlier in the

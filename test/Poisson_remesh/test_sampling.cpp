@@ -15,6 +15,10 @@
 
 #include <catch2/catch.hpp>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
+
 #include <cmath>
 #include <complex>
 #include <map>
@@ -492,6 +496,22 @@ void check_adaptive_with_shortest_path_judge(const Mesh& m, const std::vector<Sa
   }
 }
 
+// check_adaptive_rule() with the exact oracle on the whole mesh as the distance
+void check_adaptive_rule_by_exact_oracle(const Mesh& m, const std::vector<Sample>& s, const std::vector<double>& vr, std::size_t points)
+{
+  Oracle o(m, m.points());
+  const Oracle::Face_location* last = nullptr;
+  const double rmax = *std::max_element(vr.begin(), vr.end());
+  check_adaptive_rule(m, s, vr, points, [&](const Oracle::Face_location& a, const Sample& b) {
+    if(last == nullptr || last->first != a.first || last->second != a.second) {
+      o.propagate(a, 2.01 * rmax);
+      last = &a;
+    }
+    const auto d = o.distance(b.location);
+    return d ? *d : HUGE_VAL;
+  });
+}
+
 template <class Field>
 std::vector<Sample> adaptive_sample(const Mesh& m, const Field& field, double n, unsigned seed, std::vector<double>& vertex_radius,
                                     PR::Poisson_disk_sampling_result* result = nullptr)
@@ -554,20 +574,64 @@ TEST_CASE("adaptive samples keep d(p, q) >= r(p) + r(q) and cover the surface by
     const auto s = adaptive_sample(m, PR::Curvature_density(), 1200, 11, vr);
     check_on_surface(m, s);
     CHECK(std::abs(double(s.size()) - 1200) < 0.05 * 1200);
-    Oracle o(m, m.points());
-    const Oracle::Face_location* last = nullptr;
-    const double rmax = *std::max_element(vr.begin(), vr.end());
-    check_adaptive_rule(m, s, vr, 3000, [&](const Oracle::Face_location& a, const Sample& b) {
-      if(last == nullptr || last->first != a.first || last->second != a.second) {
-        o.propagate(a, 2.01 * rmax);
-        last = &a;
-      }
-      const auto d = o.distance(b.location);
-      return d ? *d : HUGE_VAL;
-    });
+    check_adaptive_rule_by_exact_oracle(m, s, vr, 3000);
     check_adaptive_with_shortest_path_judge(m, s, vr, 15);
   }
 }
+
+#ifdef CGAL_LINKED_WITH_TBB
+TEST_CASE("the parallel mode samples by slabs: separated and maximal, the same set for 1, 2 and 4 threads", "[sampling][parallel]")
+{
+  // (judges: the exact oracle on the whole mesh, Surface_mesh_shortest_path spot checks; the
+  // slabs' samplers work on submeshes, so a sample missing across a slab border or two samples
+  // too close across it would show here)
+  // (fandisk at this count is too short to cut: its long faces widen the reach)
+  for(const std::string name : {"meshes/camel.off", "meshes/elephant.off"}) {
+    SECTION(name) {
+      Mesh m;
+      PR::read_surface_mesh(test_support::data_mesh(name), m);
+      const auto np = PR::parameters::target_vertex_count(2500).random_seed(5u);
+      std::vector<std::vector<Sample>> sets;
+      PR::Poisson_disk_sampling_result r;
+      for(const int threads : {1, 2, 4}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        sets.emplace_back();
+        r = PR::poisson_disk_sample<CGAL::Parallel_tag>(m, std::back_inserter(sets.back()), np);
+      }
+      const std::vector<Sample>& s = sets.front();
+      for(std::size_t k = 1; k < sets.size(); ++k) {
+        REQUIRE(sets[k].size() == s.size());
+        std::size_t other = 0;
+        for(std::size_t i = 0; i < s.size(); ++i) if(sets[k][i].point != s[i].point) ++other;
+        CHECK(other == 0);
+      }
+      // (the slabs ran: the sequential sampler's set for the seed is another one)
+      std::vector<Sample> seq;
+      PR::poisson_disk_sample(m, std::back_inserter(seq), np);
+      bool differ = seq.size() != s.size();
+      for(std::size_t i = 0; !differ && i < s.size(); ++i) differ = seq[i].point != s[i].point;
+      CHECK(differ);
+      check_on_surface(m, s);
+      CHECK(smallest_separation_over_2r(m, s, r.radius) >= 1 - 1e-6);
+      CHECK(largest_gap_over_2r(m, s, r.radius, 5000) <= 1 + 1e-6);
+      check_with_shortest_path_judge(m, s, r.radius, 15);
+    }
+  }
+  SECTION("elephant with the curvature density") {
+    Mesh m;
+    PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), m);
+    std::vector<double> vr = PR::vertex_disk_radii(m, m.points(), PR::vertex_densities(PR::Curvature_density(), m, m.points()), 2500);
+    std::vector<Sample> s;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(2));
+      PR::poisson_disk_sample<CGAL::Parallel_tag>(m, std::back_inserter(s),
+        PR::parameters::target_vertex_count(2500).random_seed(5u).density(PR::Curvature_density()));
+    }
+    check_on_surface(m, s);
+    check_adaptive_rule_by_exact_oracle(m, s, vr, 3000);
+  }
+}
+#endif
 
 TEST_CASE("the curvature density stays finite on degenerate faces (found by fuzzing)", "[sampling][adaptive]")
 {

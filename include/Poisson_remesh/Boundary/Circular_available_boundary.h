@@ -230,8 +230,24 @@ public:
   /// Pieces shorter than this are dropped (set to a tiny fraction of r by the sampler).
   void set_minimum_length(double l) { min_length_ = l; }
 
-  /// true when no arc is left (the sample set is maximal)
-  bool empty() const { return alive_count_ == 0; }
+  /// Draws only on the arcs of the faces f with `pickable[fim(f)]` (the parallel sampler's slab:
+  /// its samples are drawn in the faces it owns, the arcs of the faces around them are kept to
+  /// update); an empty vector (the default) makes every face pickable. empty() and length() then
+  /// count the pickable arcs alone.
+  void set_pickable_faces(std::vector<char> pickable)
+  {
+    pickable_ = std::move(pickable);
+    pickable_count_ = 0;
+    for(std::size_t i = 0; i < alive_.size(); ++i) {
+      if(!alive_[i]) continue;
+      const bool p = is_pickable(stored(i).arc.face);
+      fenwick_.set(i, p ? stored(i).arc.length() : 0.0);
+      if(p) ++pickable_count_;
+    }
+  }
+
+  /// true when no arc is left (the sample set is maximal), or no pickable one (set_pickable_faces())
+  bool empty() const { return pickable_count_ == 0; }
   /// the number of live arcs
   std::size_t number_of_arcs() const { return alive_count_; }
   /// the total length of the live arcs
@@ -255,6 +271,7 @@ public:
     fenwick_.clear();
     for(auto& l : arcs_in_face_) l.clear();
     alive_count_ = 0;
+    pickable_count_ = 0;
   }
 
   /// A point drawn uniformly by arc length on the live arcs; `u01` returns uniform numbers in [0, 1).
@@ -273,7 +290,7 @@ public:
       const double total = fenwick_.total();
       double rest = 0;
       const std::size_t i = fenwick_.find(u01() * total, rest);
-      if(i < alive_.size() && alive_[i]) {
+      if(i < alive_.size() && alive_[i] && is_pickable(stored(i).arc.face)) {
         const double len = fenwick_.weight(i);
         const double t = len > 0 ? std::min(1.0, std::max(0.0, rest / len)) : 0.5;
         arc = i;
@@ -281,7 +298,7 @@ public:
       }
       fenwick_.rebuild(); // rounding drift: rebuild and draw again
       if(attempt > 3) {   // fall back to the first live arc
-        for(std::size_t k = 0; k < alive_.size(); ++k) if(alive_[k]) { arc = k; return location(stored(k).arc, u01()); }
+        for(std::size_t k = 0; k < alive_.size(); ++k) if(alive_[k] && is_pickable(stored(k).arc.face)) { arc = k; return location(stored(k).arc, u01()); }
       }
     }
   }
@@ -473,9 +490,11 @@ private:
     }
     slot_of_.push_back(slot);
     alive_.push_back(1);
-    fenwick_.set(id, a.length());
+    const bool p = is_pickable(a.face);
+    fenwick_.set(id, p ? a.length() : 0.0);
     arcs_in_face_[get(fim_, a.face)].push_back(id);
     ++alive_count_;
+    if(p) ++pickable_count_;
   }
 
   void kill(std::size_t i)
@@ -483,12 +502,14 @@ private:
     alive_[i] = 0;
     fenwick_.set(i, 0.0);
     --alive_count_;
+    if(is_pickable(stored(i).arc.face)) --pickable_count_;
     auto& list = arcs_in_face_[get(fim_, stored(i).arc.face)];
     list.erase(std::remove(list.begin(), list.end(), i), list.end());
     free_.push_back(slot_of_[i]);
   }
 
   const Stored_arc& stored(std::size_t i) const { return arcs_[slot_of_[i]]; }
+  bool is_pickable(face_descriptor f) const { return pickable_.empty() || pickable_[std::size_t(get(fim_, f))]; }
 
   static void split(const Arc& a, std::vector<double>& cuts, std::vector<Arc>& pieces)
   {
@@ -539,7 +560,8 @@ private:
   std::vector<std::size_t> free_;      // records of dead arcs, reused by add()
   std::vector<std::vector<std::size_t>> arcs_in_face_;
   internal::Fenwick_tree fenwick_;
-  std::size_t alive_count_ = 0;
+  std::size_t alive_count_ = 0, pickable_count_ = 0;
+  std::vector<char> pickable_;   // (empty: every face)
   double min_length_ = 0;
   // the update's buffers (members only to reuse their storage from one update to the next)
   std::vector<std::pair<std::size_t, double>> stored_cuts_;

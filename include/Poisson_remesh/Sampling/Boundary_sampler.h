@@ -274,6 +274,12 @@ public:
     }
   }
 
+  /// fill() draws only in the faces f with `pickable[fim(f)]` (fim: the mesh's initialized face
+  /// index map; an empty vector: everywhere), the rest of the boundary still kept and updated;
+  /// fill() then stops when no arc is left in those faces. (The parallel sampler gives each slab
+  /// of the surface a sampler that draws in the slab alone: Sampling/internal/slab_sampling.h.)
+  void restrict_draws_to(std::vector<char> pickable) { boundary_.set_pickable_faces(std::move(pickable)); }
+
   /// the samples so far, in the order they were added
   const std::vector<Sample>& samples() const { return samples_; }
   /// the available boundary (empty when the set is maximal)

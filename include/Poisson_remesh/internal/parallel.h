@@ -48,20 +48,21 @@ constexpr bool is_parallel()
 }
 
 /// f(i) for i in [0, n): in order, or by TBB's threads (`ConcurrencyTag`); each f(i) must touch
-/// only its own data
+/// only its own data. `grain`: the fewest calls a task takes (the default suits cheap calls:
+/// below a few hundred a task costs more than it saves; 1 for a few long ones)
 template <class ConcurrencyTag, class F>
-void for_each_index(std::size_t n, F f)
+void for_each_index(std::size_t n, F f, std::size_t grain = 64)
 {
 #ifdef CGAL_LINKED_WITH_TBB
   if constexpr(is_parallel<ConcurrencyTag>()) {
-    // (grain: below a few hundred cheap calls a task costs more than it saves)
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain), [&](const tbb::blocked_range<std::size_t>& r) {
       for(std::size_t i = r.begin(); i != r.end(); ++i) f(i);
     });
     return;
   }
 #endif
   (void)is_parallel<ConcurrencyTag>();
+  (void)grain;
   for(std::size_t i = 0; i < n; ++i) f(i);
 }
 
