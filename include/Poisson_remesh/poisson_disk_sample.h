@@ -220,18 +220,19 @@ Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, VPM vpm
     (*progress)("sampling", sampler.samples().size(), expected);
   }
   auto on_sample = [&](std::size_t n) { if(report) (*progress)("sampling", n, expected); };
-  std::vector<typename decltype(sampler)::Sample> samples;
+  // (the samples: the sampler's, or those of the slabs in parallel mode)
+  std::vector<typename decltype(sampler)::Sample> by_slabs;
+  const auto* all = &sampler.samples();
   result.statistics = sampler.statistics();
-  bool by_slabs = false;
   if constexpr(is_parallel<ConcurrencyTag>() && std::is_same<GeodesicOracle, Exact_geodesic_oracle<TriangleMesh, VPM>>::value) {
-    samples = sampler.samples();
-    by_slabs = fill_by_slabs<ConcurrencyTag>(tm, vpm, radius, vertex_radii, seed, samples, result.statistics, on_sample);
+    by_slabs = sampler.samples();
+    if(fill_by_slabs<ConcurrencyTag>(tm, vpm, radius, vertex_radii, seed, by_slabs, result.statistics, on_sample)) all = &by_slabs;
   }
-  if(!by_slabs) {
+  if(all != &by_slabs) {
     sampler.fill(on_sample);
-    samples = sampler.samples();
     result.statistics = sampler.statistics();
   }
+  const auto& samples = *all;
   // the samples of crowded curves are surface samples (the caller drops those curves)
   std::sort(crowded_samples.begin(), crowded_samples.end());
   for(std::size_t i = 0; i < samples.size(); ++i) {
@@ -288,8 +289,9 @@ struct Poisson_disk_sampler
     mode the counts come after each phase of the slabs
 
   `ConcurrencyTag`: CGAL::Sequential_tag (the default), or CGAL::Parallel_tag (needs TBB) /
-  CGAL::Parallel_if_available_tag: the surface is cut into slabs across its longest side, which
-  fill on TBB's threads in phases (even slabs, then odd ones, until none has room left). The set is
+  CGAL::Parallel_if_available_tag: the surface is cut into three slabs across its longest side,
+  which fill on TBB's threads in phases (the two outer ones at once, then the middle one, then
+  again any slab whose neighbours added samples near it, until none has room left). The set is
   as maximal and as separated as the sequential one, but another one: it depends on the seed and
   not on the number of threads. A surface too short for three slabs at its sampling radius (fewer
   than about 25 spacings along its longest side), or a user's `geodesic_oracle`, is sampled

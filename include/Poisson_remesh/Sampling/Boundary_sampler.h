@@ -234,13 +234,20 @@ public:
     }
     for(std::size_t c = 0; c < nc; ++c) {
       if(has_sample[c] || faces_of[c].empty()) continue;
-      const double u = uniform01() * cumulative[c].back();
-      const std::size_t i = std::min<std::size_t>(faces_of[c].size() - 1,
-        std::size_t(std::upper_bound(cumulative[c].begin(), cumulative[c].end(), u) - cumulative[c].begin()));
-      double b1 = uniform01(), b2 = uniform01();
-      if(b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
-      add_sample({faces_of[c][i], {{1 - b1 - b2, b1, b2}}}, Sample_kind::surface, false, level_);
+      add_sample(random_location(faces_of[c], cumulative[c]), Sample_kind::surface, false, level_);
     }
+  }
+
+  /// A point drawn uniformly by area from the sampler's generator on the faces `fs`, whose
+  /// cumulative areas are `cumulative` (non-empty, the last one positive).
+  Face_location random_location(const std::vector<face_descriptor>& fs, const std::vector<double>& cumulative)
+  {
+    const double u = uniform01() * cumulative.back();
+    const std::size_t i = std::min<std::size_t>(fs.size() - 1,
+      std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin()));
+    double b1 = uniform01(), b2 = uniform01();
+    if(b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+    return {fs[i], {{1 - b1 - b2, b1, b2}}};
   }
 
   /// Draws samples on the available boundary until it is empty (§4.2, steps 3-5).

@@ -43,6 +43,7 @@
 #include <memory>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -134,8 +135,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     double reach_a = 0, reach_b = 0;        // samples there are inserted
     double mesh_a = 0, mesh_b = 0;          // faces meeting it are in the submesh
   };
-  // the slabs for a count k, or none when two slabs of a phase could read each other's samples
-  // (the faces by centroid along the axis, with their areas: the slabs hold equal areas)
+  // the faces by centroid along the axis, with their areas (slabs are cut by shares of the area)
   std::vector<std::pair<double, std::size_t>> by_centroid;
   std::vector<double> area(face_bound, 0.0);
   double total_area = 0;
@@ -198,8 +198,8 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     std::vector<face_descriptor> original;      // by submesh face index
     std::vector<unsigned char> rotation;        // the submesh face's first corner, in the original's order
     std::unordered_map<std::size_t, std::size_t> sub_of;   // original face index -> submesh face index
-    // the owned faces by connected piece (submesh indices), with their cumulative areas (seeds)
-    std::vector<std::vector<std::size_t>> pieces;
+    // the owned faces by connected piece, with their cumulative areas (seeds)
+    std::vector<std::vector<Sub_face>> pieces;
     std::vector<std::vector<double>> piece_area;
     std::unique_ptr<Sub_sampler> sampler;
     std::size_t seen = 0;                       // the samples looked at
@@ -208,6 +208,8 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
   };
   std::vector<std::unique_ptr<Slab_sampler>> slab(k);
   std::atomic<bool> built(true);
+  auto sub_face = [](std::size_t j) { return Sub_face(typename Sub_mesh::size_type(j)); };
+  auto sub_vertex = [](std::size_t j) { return Sub_vertex(typename Sub_mesh::size_type(j)); };
   // (each slab built by its thread: the input is only read)
   for_each_index<ConcurrencyTag>(k, [&](std::size_t s) {
     auto x = std::make_unique<Slab_sampler>();
@@ -222,7 +224,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     std::vector<std::array<std::size_t, 3>> corner(chosen.size(), {{0, 0, 0}});
     std::vector<Point_3> points;
     std::vector<double> radii;
-    std::unordered_map<std::size_t, char> done;   // input vertices already split into fans
+    std::unordered_set<std::size_t> done;   // input vertices already split into fans
     auto chosen_face = [&](halfedge_descriptor h) -> long {
       if(is_border(h, tm)) return -1;
       const auto it = x->sub_of.find(std::size_t(get(fim, face(h, tm))));
@@ -238,7 +240,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     for(std::size_t j = 0; j < chosen.size(); ++j) {
       for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(face_of[chosen[j]], tm), tm)) {
         const std::size_t vi = std::size_t(get(vim, v));
-        if(!done.emplace(vi, 1).second) continue;
+        if(!done.insert(vi).second) continue;
         std::vector<halfedge_descriptor> ring;
         for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm)) ring.push_back(h);
         const std::size_t n = ring.size();
@@ -264,8 +266,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     x->rotation.reserve(chosen.size());
     std::vector<char> pickable(chosen.size(), 0);
     for(std::size_t j = 0; j < chosen.size(); ++j) {
-      const Sub_vertex w[3] = {Sub_vertex(typename Sub_mesh::size_type(corner[j][0])), Sub_vertex(typename Sub_mesh::size_type(corner[j][1])),
-                               Sub_vertex(typename Sub_mesh::size_type(corner[j][2]))};
+      const Sub_vertex w[3] = {sub_vertex(corner[j][0]), sub_vertex(corner[j][1]), sub_vertex(corner[j][2])};
       const Sub_face g = x->mesh.add_face(w[0], w[1], w[2]);
       if(g == Sub_mesh::null_face() || std::size_t(g) != j) { built = false; return; }
       const Sub_vertex first = source(halfedge(g, x->mesh), x->mesh);
@@ -273,7 +274,8 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
       x->original.push_back(face_of[chosen[j]]);
     }
     for(std::size_t i : layer.owned) pickable[x->sub_of.at(i)] = 1;
-    // the connected pieces of the owned faces (a slab across legs and arms holds several)
+    // the connected pieces of the owned faces (a slab cut across separate parts of the surface
+    // holds several)
     std::vector<long> piece(chosen.size(), -1);
     for(std::size_t i : layer.owned) {
       const std::size_t j0 = x->sub_of.at(i);
@@ -285,10 +287,10 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
       while(!stack.empty()) {
         const std::size_t j = stack.back();
         stack.pop_back();
-        x->pieces.back().push_back(j);
-        const double a = CGAL::to_double(PMP::face_area(Sub_face(typename Sub_mesh::size_type(j)), x->mesh));
+        x->pieces.back().push_back(sub_face(j));
+        const double a = CGAL::to_double(PMP::face_area(sub_face(j), x->mesh));
         x->piece_area.back().push_back((x->piece_area.back().empty() ? 0.0 : x->piece_area.back().back()) + a);
-        for(auto h : CGAL::halfedges_around_face(halfedge(Sub_face(typename Sub_mesh::size_type(j)), x->mesh), x->mesh)) {
+        for(auto h : CGAL::halfedges_around_face(halfedge(sub_face(j), x->mesh), x->mesh)) {
           const auto o = opposite(h, x->mesh);
           if(is_border(o, x->mesh)) continue;
           const std::size_t n = std::size_t(face(o, x->mesh));
@@ -314,7 +316,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     const std::size_t j = x.sub_of.at(std::size_t(get(fim, loc.first)));
     const unsigned s = x.rotation[j];
     typename Sub_sampler::Face_location out;
-    out.first = Sub_face(typename Sub_mesh::size_type(j));
+    out.first = sub_face(j);
     for(unsigned t = 0; t < 3; ++t) out.second[t] = loc.second[(s + t) % 3];
     return out;
   };
@@ -348,16 +350,9 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     if(!x.started) {
       // a seed in each piece of its faces (refused where a sample covers it)
       x.started = true;
-      for(std::size_t c = 0; c < x.pieces.size(); ++c) {
-        const std::vector<double>& cumulative = x.piece_area[c];
-        if(!(cumulative.back() > 0)) continue;
-        const double u = x.sampler->uniform01() * cumulative.back();
-        const std::size_t i = std::min<std::size_t>(cumulative.size() - 1,
-          std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin()));
-        double b1 = x.sampler->uniform01(), b2 = x.sampler->uniform01();
-        if(b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
-        x.sampler->insert({Sub_face(typename Sub_mesh::size_type(x.pieces[c][i])), {{1 - b1 - b2, b1, b2}}}, Sample_kind::surface, true);
-      }
+      for(std::size_t c = 0; c < x.pieces.size(); ++c)
+        if(x.piece_area[c].back() > 0)
+          x.sampler->insert(x.sampler->random_location(x.pieces[c], x.piece_area[c]), Sample_kind::surface, true);
     }
     x.sampler->fill();
     for(std::size_t i = first_own; i < x.sampler->samples().size(); ++i) x.made.push_back(from_sub(x, x.sampler->samples()[i]));
