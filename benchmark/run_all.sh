@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
-# run_all.sh [--quick] [--build DIR] [--out DIR] -- regenerates the benchmark's tables and pictures
+# run_all.sh [--quick] [--ablation] [--build DIR] [--out DIR] -- regenerates the benchmark's tables and pictures
 # from the current code, each file stamped with the commit, the date, the machine (CPU, cores),
 # the compiler and the command that made it.
 #
 #   --quick   (under 10 minutes on 2 cores, after the build) the sampler's speed and its split by
-#             stage, the remesh of the eight benchmark models beside CGAL's isotropic_remeshing,
-#             the program's wall time against its remesh on six meshes, the bad-input table and
-#             the pictures (fandisk, triceratops, cheese, head: input, ours and CGAL's);
+#             stage, the geodesic oracle against CGAL's exact shortest paths, the remesh of the
+#             eight benchmark models beside CGAL's isotropic_remeshing, the program's wall time
+#             against its remesh on six meshes, the parallel mode on five, the bad-input table
+#             and the pictures (fandisk, triceratops, cheese, head: input, ours and CGAL's);
 #   (full)    also the adaptive comparison, the program's overhead on every CGAL data mesh with
-#             500-40,000 vertices, the corpus run (every such mesh, ours beside CGAL's, the floor,
-#             the ablation of each step beyond the paper; again with the peer's sharp edges free),
-#             the scale series (10k to 1.2M faces, about 20 minutes) and both fuzz targets on
-#             100,000 inputs each.
+#             500-40,000 vertices, the corpus run (every such mesh, ours beside CGAL's, the floor;
+#             again with the peer's sharp edges free), the scale series (10k to 1.2M faces, about
+#             20 minutes) and both fuzz targets on 100,000 inputs each (about 80 minutes).
+#   --ablation  (full mode) also the corpus again with each step beyond the paper switched off
+#             in turn (generated/corpus_ablation.md, about an hour more).
 #
 # Builds first (scripts/build.sh: installs what is missing with apt-get, Release, ccache).
 # Outputs go to benchmark/Poisson_remesh/generated/ (or --out DIR); the pictures to
@@ -19,14 +21,16 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 quick=0
+ablation=0
 build="${POISSON_REMESH_BUILD_DIR:-$root/build}"
 out="$root/benchmark/Poisson_remesh/generated"
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
+    --ablation) ablation=1 ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_all.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -74,6 +78,10 @@ else
   echo "(no perf: the split by stage is skipped; apt-get install linux-perf)"
 fi
 
+step "geodesic oracle: truncated propagation against CGAL's Surface_mesh_shortest_path"
+"$bench/geodesic_benchmark" "$build/data/meshes/fandisk.off" > "$out/geodesic_results.md"
+stamp "$out/geodesic_results.md" "$bench/geodesic_benchmark $build/data/meshes/fandisk.off"
+
 step "remesh: the eight benchmark models beside CGAL's isotropic_remeshing"
 "$bench/remesh_benchmark" --data "$build/data" --markdown "$out/remesh_results.md" --json "$out/remesh_results.json" > /dev/null
 stamp "$out/remesh_results.md" "$bench/remesh_benchmark"
@@ -104,14 +112,20 @@ if [ $quick = 0 ]; then
     --markdown "$out/adaptive_results.md" --json "$out/adaptive_results.json" > /dev/null
   stamp "$out/adaptive_results.md" "$bench/remesh_benchmark --meshes dino,elephant,bull,cow,knot1,camel,lion-head --contenders cgal_isotropic,poisson_remesh,poisson_adaptive --factor 0.5"
 
-  step "the CGAL corpus beside isotropic_remeshing, with the ablation (about an hour on 2 cores)"
-  "$bench/corpus_benchmark" --data "$build/data" --ablation all --jobs 2 \
+  step "the CGAL corpus beside isotropic_remeshing (about 8 minutes on 2 cores)"
+  "$bench/corpus_benchmark" --data "$build/data" --jobs 2 --seed 1 \
     --markdown "$out/corpus_results.md" --json "$out/corpus_results.json" > /dev/null
-  stamp "$out/corpus_results.md" "$bench/corpus_benchmark --ablation all --jobs 2"
+  stamp "$out/corpus_results.md" "$bench/corpus_benchmark --jobs 2 --seed 1"
   step "the CGAL corpus, the peer without constrained sharp edges"
-  "$bench/corpus_benchmark" --data "$build/data" --peer-sharp-angle 0 --jobs 2 \
+  "$bench/corpus_benchmark" --data "$build/data" --peer-sharp-angle 0 --jobs 2 --seed 1 \
     --markdown "$out/corpus_results_unconstrained_peer.md" --json "$out/corpus_results_unconstrained_peer.json" > /dev/null
-  stamp "$out/corpus_results_unconstrained_peer.md" "$bench/corpus_benchmark --peer-sharp-angle 0 --jobs 2"
+  stamp "$out/corpus_results_unconstrained_peer.md" "$bench/corpus_benchmark --peer-sharp-angle 0 --jobs 2 --seed 1"
+  if [ $ablation = 1 ]; then
+    step "the ablation of the steps beyond the paper over the corpus (about an hour on 2 cores)"
+    "$bench/corpus_benchmark" --data "$build/data" --ablation all --jobs 2 --seed 1 \
+      --markdown "$out/corpus_ablation.md" --json "$out/corpus_ablation.json" > /dev/null
+    stamp "$out/corpus_ablation.md" "$bench/corpus_benchmark --ablation all --jobs 2 --seed 1"
+  fi
 
   step "scale series (about 20 minutes)"
   bash "$here/scale.sh" "$build" "$out/scale_results"

@@ -1,16 +1,24 @@
 // benchmark_support.h -- what the benchmark programs share: the process's peak memory, the
-// machine's description, a comma-separated list, a number printed with fixed digits, and a child
-// process's "key value" report.
+// machine's description, a comma-separated list, a number printed with fixed digits, a child
+// process's "key value" report, and the RMS distance between two surfaces.
 #ifndef POISSON_REMESH_BENCHMARK_SUPPORT_H
 #define POISSON_REMESH_BENCHMARK_SUPPORT_H
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>   // (before distance.h: its calls need the kernel's functions)
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/version.h>
 
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -74,6 +82,31 @@ inline std::map<std::string, double> parse_report(const std::string& text, std::
     is >> v[key];
   }
   return v;
+}
+
+// the RMS distance between surfaces `a` and `b`, both ways: over 30,000 uniform random points on
+// each (seed 7), the squared distance to the other surface (CGAL's AABB tree), averaged over both
+// sets; the same points for the same meshes in every run
+template <class Mesh>
+double two_sided_rms_distance(const Mesh& a, const Mesh& b)
+{
+  typedef typename boost::property_traits<typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type>::value_type Point_3;
+  typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
+  typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+  double sq = 0;
+  std::size_t count = 0;
+  for(int side = 0; side < 2; ++side) {
+    const Mesh& from = side ? b : a;
+    const Mesh& to = side ? a : b;
+    CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(faces(to).first, faces(to).second, to);
+    tree.accelerate_distance_queries();
+    std::vector<Point_3> points;
+    CGAL::Polygon_mesh_processing::sample_triangle_mesh(
+      from, std::back_inserter(points),
+      CGAL::parameters::use_random_uniform_sampling(true).number_of_points_on_faces(30000).do_sample_vertices(false).do_sample_edges(false).random_seed(7));
+    for(const auto& p : points) { sq += CGAL::to_double(tree.squared_distance(p)); ++count; }
+  }
+  return count ? std::sqrt(sq / double(count)) : 0;
 }
 
 } // namespace benchmark_support

@@ -107,22 +107,7 @@ static Figures measure(const Mesh& out, const Mesh& input)
   r.irregular = q.irregular_share;
   r.hausdorff = q.hausdorff.value_or(-1);
   r.self_intersections_away = double(q.number_of_self_intersecting_face_pairs_away_from_reference_ones.value_or(q.number_of_self_intersecting_face_pairs));
-  // RMS distance, both ways, over 30,000 uniform points on each surface
-  double sq = 0;
-  std::size_t count = 0;
-  for(int side = 0; side < 2; ++side) {
-    const Mesh& from = side ? input : out;
-    const Mesh& to = side ? out : input;
-    typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
-    CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(faces(to).first, faces(to).second, to);
-    tree.accelerate_distance_queries();
-    std::vector<K::Point_3> points;
-    PMP::sample_triangle_mesh(from, std::back_inserter(points),
-                              CGAL::parameters::use_random_uniform_sampling(true).number_of_points_on_faces(30000)
-                                .do_sample_vertices(false).do_sample_edges(false).random_seed(7));
-    for(const auto& p : points) { sq += tree.squared_distance(p); ++count; }
-  }
-  r.rms = count ? std::sqrt(sq / double(count)) / diag : 0;
+  r.rms = benchmark_support::two_sided_rms_distance(out, input) / diag;   // (30,000 uniform points on each surface)
   r.topology_kept = q.genus == in.genus && q.number_of_components == in.number_of_components &&
                     q.number_of_border_cycles == in.number_of_border_cycles ? 1 : 0;
   return r;
