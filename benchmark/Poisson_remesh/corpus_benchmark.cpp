@@ -360,6 +360,7 @@ struct Column
 static const std::vector<Column>& columns()
 {
   static const std::vector<Column> c = {
+    {"θmin (°)", [](const Figures& f) { return f.min_angle; }, true, 1, 1},
     {"θmin away (°)", [](const Figures& f) { return f.min_angle_away; }, true, 1, 1},
     {"θ̄min (°)", [](const Figures& f) { return f.mean_min_angle; }, true, 1, 2},
     {"θmax (°)", [](const Figures& f) { return f.max_angle; }, false, 1, 1},
@@ -552,8 +553,8 @@ int main(int argc, char** argv)
      << (merge.empty() ? ". Whole run: " + fmt(total / 60, 1) + " min.\n\n" : ". Rows merged from " + std::to_string(merge.size()) + " runs.\n\n");
 
   // per mesh: ours beside the peer
-  md << "| mesh | input V | | V (% of input) | θmin away (°) | θ̄min (°) | θmax (°) | irregular (%) | RMS (% diag) | Hausdorff (% diag) | new crossings | topology kept | seconds | peak MiB | floor |\n"
-     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|---|\n";
+  md << "| mesh | input V | | V (% of input) | θmin (°) | θmin away (°) | θ̄min (°) | θmax (°) | irregular (%) | RMS (% diag) | Hausdorff (% diag) | new crossings | topology kept | seconds | peak MiB | floor |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|---:|---:|---|\n";
   for(const std::string& m0 : meshes) {
     const std::string m = shown(m0);
     const Row* peer = find(m, "cgal");
@@ -561,12 +562,12 @@ int main(int argc, char** argv)
       const Row* r = find(m, c);
       if(!r) continue;
       md << "| " << (c == std::string("ours") ? m : "") << " | " << (c == std::string("ours") ? fmt(r->input_vertices, 0) : "") << " | " << (c == std::string("ours") ? "ours" : "CGAL") << " | ";
-      if(!r->ok) { md << "failed: " << r->error << " |||||||||||\n"; continue; }
+      if(!r->ok) { md << "failed: " << r->error << " ||||||||||||\n"; continue; }
       const Figures& f = r->f;
       const auto why = misses(*r, c == std::string("ours") ? peer : nullptr);
       std::string verdict = why.empty() ? "holds" : "";
       for(std::size_t i = 0; i < why.size(); ++i) verdict += (i ? ", " : "") + why[i];
-      md << fmt(f.vertices, 0) << " (" << fmt(100 * f.vertices / std::max(1.0, r->input_vertices), 1) << ") | " << fmt(f.min_angle_away, 1) << " | "
+      md << fmt(f.vertices, 0) << " (" << fmt(100 * f.vertices / std::max(1.0, r->input_vertices), 1) << ") | " << fmt(f.min_angle, 1) << " | " << fmt(f.min_angle_away, 1) << " | "
          << fmt(f.mean_min_angle, 2) << " | " << fmt(f.max_angle, 1) << " | " << fmt(100 * f.irregular, 1) << " | " << fmt(100 * f.rms, 4) << " | "
          << fmt(100 * f.hausdorff, 3) << " | " << fmt(f.self_intersections_away, 0) << " | " << (f.topology_kept ? "yes" : "no") << " | "
          << fmt(f.seconds, 2) << " | " << fmt(f.peak_mib, 0) << " | " << verdict << " |\n";
