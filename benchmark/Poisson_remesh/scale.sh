@@ -8,7 +8,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 build="${1:-$here/../../build}"
-out="${2:-$here/scale_results}"
+out="${2:-$here/generated/scale_results}"
 data="$build/data"
 series="$(mktemp -d)"
 trap 'rm -rf "$series"' EXIT
