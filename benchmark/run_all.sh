@@ -42,7 +42,10 @@ examples="$build/examples/Poisson_remesh"
 here="$root/benchmark/Poisson_remesh"
 
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
-dirty=$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null | sed -n 1p)
+# (what this script writes itself -- the generated tables, the pictures, the tables README.md and
+# RESULTS.md quote -- does not count as a change of the code measured)
+dirty=$(git -C "$root" status --porcelain --untracked-files=no -- . ':!benchmark/Poisson_remesh/generated' \
+          ':!benchmark/Poisson_remesh/pictures' ':!README.md' ':!benchmark/Poisson_remesh/RESULTS.md' 2>/dev/null | sed -n 1p)
 [ -z "$dirty" ] || commit="$commit (with uncommitted changes)"
 cpu=$(grep -m1 "model name" /proc/cpuinfo | sed 's/.*: //')
 compiler=$(${CXX:-c++} --version | sed -n 1p)
@@ -152,5 +155,13 @@ if [ $quick = 0 ]; then
     done
   } > "$out/fuzz.md"
   stamp "$out/fuzz.md" "scripts/fuzz.sh 100000"
+fi
+if [ "$out" = "$root/benchmark/Poisson_remesh/generated" ]; then
+  step "the tables README.md and RESULTS.md quote (between <!-- table: NAME --> markers)"
+  if ! command -v python3 > /dev/null; then
+    sudo_cmd=; [ "$(id -u)" = 0 ] || sudo_cmd=sudo
+    $sudo_cmd apt-get install -y -qq python3 > /dev/null
+  fi
+  python3 "$here/regenerated_tables.py" "$out" "$here/pictures" "$root/README.md" "$here/RESULTS.md"
 fi
 step "done: $out"
