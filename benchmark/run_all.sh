@@ -11,7 +11,7 @@
 #   (full)    also the adaptive comparison, the program's overhead on every CGAL data mesh with
 #             500-40,000 vertices, the corpus run (every such mesh, ours beside CGAL's, the floor;
 #             again with the peer's sharp edges free), the scale series (10k to 1.2M faces, about
-#             20 minutes) and both fuzz targets on 100,000 inputs each (about 80 minutes).
+#             15 minutes) and both fuzz targets on 100,000 inputs each (about 25 minutes).
 #   --ablation  (full mode) also the corpus again with each step beyond the paper switched off
 #             in turn (generated/corpus_ablation.md, about an hour more).
 #
@@ -130,7 +130,7 @@ if [ $quick = 0 ]; then
     stamp "$out/corpus_ablation.md" "$bench/corpus_benchmark --ablation all --jobs 2 --seed 1"
   fi
 
-  step "scale series (about 20 minutes)"
+  step "scale series (about 15 minutes)"
   bash "$here/scale.sh" "$build" "$out/scale_results"
   stamp "$out/scale_results.md" "benchmark/Poisson_remesh/scale.sh $build"
 

@@ -4,7 +4,7 @@
 # (over 500,000 vertices from the 1.21M-face mesh: the sampler lands about 3% under the count
 # that Eq. 1 predicts on smooth surfaces) by poisson_remesh and by CGAL's isotropic remeshing
 # in the same run; time and peak memory per input face, and their growth exponents.
-# Usage: benchmark/Poisson_remesh/scale.sh [BUILD_DIR] [OUT_PREFIX]   (about 20 minutes)
+# Usage: benchmark/Poisson_remesh/scale.sh [BUILD_DIR] [OUT_PREFIX]   (about 15 minutes)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 build="${1:-$here/../../build}"
