@@ -311,7 +311,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
     if(attempt == 0) first_count = num_vertices(output);
-    const bool last = !places.wanted() || attempt >= regrading_attempts ||
+    const bool last = !places.remake_wanted(attempt) || attempt >= regrading_attempts ||
                       double(num_vertices(output)) > regrading.max_growth * double(first_count);
     output_is_best = attempt == 0 || places.better_than(best_places);
     if(output_is_best) {

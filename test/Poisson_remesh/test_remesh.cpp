@@ -209,6 +209,35 @@ TEST_CASE("femur: a crumpled input is remeshed again, finer where the result fol
   CHECK(double(b.number_of_vertices) <= 1.3 * a.number_of_vertices);
 }
 
+TEST_CASE("a later remake needs a place to sample finer", "[remesh][regrading]")
+{
+  // a result at fault with no place to regrade (no crossing; its triangles under 30 degrees all
+  // at fixed vertices) is made again once -- the remake frees the corners left on no feature
+  // edge and the input vertices the tessellation kept -- and not after that: a later remake
+  // would be the same remesh drawn anew (blade at seed 1: six of them, the smallest angle
+  // 10.64 degrees each time)
+  PR::internal::Regrading_places<Point> fixed_only;
+  fixed_only.min_angle_away = 10.64;
+  fixed_only.sharp = 2;
+  REQUIRE(fixed_only.wanted());
+  CHECK(fixed_only.remake_wanted(0));
+  CHECK_FALSE(fixed_only.remake_wanted(1));
+  CHECK_FALSE(fixed_only.remake_wanted(5));
+  PR::internal::Regrading_places<Point> with_place = fixed_only;
+  with_place.sharp_free = 1;
+  with_place.places.push_back(Point(0, 0, 0));
+  CHECK(with_place.remake_wanted(0));
+  CHECK(with_place.remake_wanted(5));
+  PR::internal::Regrading_places<Point> crossing;
+  crossing.crossing_pairs = 1;
+  crossing.places = {Point(0, 0, 0), Point(1, 0, 0)};
+  CHECK(crossing.remake_wanted(3));
+  PR::internal::Regrading_places<Point> fine;
+  fine.min_angle_away = 31;
+  CHECK_FALSE(fine.wanted());
+  CHECK_FALSE(fine.remake_wanted(0));
+}
+
 TEST_CASE("of two creases closer than the spacing, the output keeps one", "[remesh][features]")
 {
   // a step across a plane: two creases of 63 degrees along y, 0.11 apart, at a spacing of 0.2

@@ -27,6 +27,8 @@
 // pointed tips) and the input vertices the tessellation could not remove are free to move.
 // The best attempt is kept: fewest crossings, then the largest smallest angle (up to the floor),
 // then the fewest triangles under `min_angle` at no pointed tip.
+// No remake after the second attempt when there is no place to sample finer (see
+// Regrading_places::remake_wanted): it would be the same remesh drawn anew.
 
 
 #ifndef POISSON_REMESH_INTERNAL_REGRADING_H
@@ -79,8 +81,15 @@ struct Regrading_places
   /// the quality report measures it (min_angle_away_from_sharp_corners)
   double min_angle_away = 180;
   double floor = 30;
-  /// whether the remesh is to be made again
+  /// whether the remesh is at fault (it cuts itself, or keeps an angle under the floor)
   bool wanted() const { return crossing_pairs > 0 || min_angle_away < floor; }
+  /// whether attempt `attempt` (0: the first) at fault is worth making again: the first one is
+  /// (a remake also frees the corners left on no feature edge and the input vertices the
+  /// tessellation kept); a later one only when there are places to sample finer. Without places
+  /// (no crossing, every triangle under the floor at a fixed vertex) a remake would differ from
+  /// this attempt by its draw alone: the radii stay as they are and what a remake frees is free
+  /// already.
+  bool remake_wanted(unsigned int attempt) const { return wanted() && (attempt == 0 || !places.empty()); }
   /// lexicographic: fewer crossings, then the smallest angle away from corners (up to the floor),
   /// then fewer sharp triangles (at no tip: counted alike in every attempt, whatever is fixed)
   bool better_than(const Regrading_places& o) const
