@@ -159,6 +159,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
   TriangleMesh best;
   Poisson_remesh_result best_result;
   internal::Regrading_places<Point_3> best_places;
+  internal::Regrading_places<Point_3> previous_places;   // (of the attempt before)
   bool output_is_best = true;
   const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
@@ -311,7 +312,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
     if(attempt == 0) first_count = num_vertices(output);
-    const bool last = !places.remake_wanted(attempt) || attempt >= regrading_attempts ||
+    const bool last = !places.remake_wanted(attempt == 0 ? nullptr : &previous_places) || attempt >= regrading_attempts ||
                       double(num_vertices(output)) > regrading.max_growth * double(first_count);
     output_is_best = attempt == 0 || places.better_than(best_places);
     if(output_is_best) {
@@ -322,6 +323,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       internal::regrade_radii(input, in_vpm, radius, places.places, radii, regrading);
       ++regraded;
     }
+    previous_places = places;
     seconds[2] += since(t);
     if(last) break;
   }

@@ -209,33 +209,34 @@ TEST_CASE("femur: a crumpled input is remeshed again, finer where the result fol
   CHECK(double(b.number_of_vertices) <= 1.3 * a.number_of_vertices);
 }
 
-TEST_CASE("a later remake needs a place to sample finer", "[remesh][regrading]")
+TEST_CASE("a fault that a new draw reproduces is not remade again", "[remesh][regrading]")
 {
   // a result at fault with no place to regrade (no crossing; its triangles under 30 degrees all
-  // at fixed vertices) is made again once -- the remake frees the corners left on no feature
-  // edge and the input vertices the tessellation kept -- and not after that: a later remake
-  // would be the same remesh drawn anew (blade at seed 1: six of them, the smallest angle
-  // 10.64 degrees each time)
-  PR::internal::Regrading_places<Point> fixed_only;
-  fixed_only.min_angle_away = 10.64;
-  fixed_only.sharp = 2;
-  REQUIRE(fixed_only.wanted());
-  CHECK(fixed_only.remake_wanted(0));
-  CHECK_FALSE(fixed_only.remake_wanted(1));
-  CHECK_FALSE(fixed_only.remake_wanted(5));
-  PR::internal::Regrading_places<Point> with_place = fixed_only;
+  // at fixed vertices) is made again as a new draw; when that draw leaves the very same fault
+  // (blade at seed 1: 10.64 degrees in each of six remakes), no remake follows
+  PR::internal::Regrading_places<Point> first;
+  first.min_angle_away = 10.64;
+  first.sharp = 2;
+  REQUIRE(first.wanted());
+  CHECK(first.places.empty());
+  CHECK(first.remake_wanted(nullptr));              // the first attempt: a new draw is tried
+  PR::internal::Regrading_places<Point> same = first;
+  CHECK_FALSE(same.remake_wanted(&first));          // the draw did not matter
+  PR::internal::Regrading_places<Point> other = first;
+  other.min_angle_away = 17.5;
+  CHECK(other.remake_wanted(&first));               // the draw changed the fault: another one
+  PR::internal::Regrading_places<Point> with_place = first;
   with_place.sharp_free = 1;
   with_place.places.push_back(Point(0, 0, 0));
-  CHECK(with_place.remake_wanted(0));
-  CHECK(with_place.remake_wanted(5));
-  PR::internal::Regrading_places<Point> crossing;
+  CHECK(with_place.remake_wanted(&first));          // a place to sample finer
+  PR::internal::Regrading_places<Point> crossing = first;
   crossing.crossing_pairs = 1;
   crossing.places = {Point(0, 0, 0), Point(1, 0, 0)};
-  CHECK(crossing.remake_wanted(3));
+  CHECK(crossing.remake_wanted(&crossing));
   PR::internal::Regrading_places<Point> fine;
   fine.min_angle_away = 31;
   CHECK_FALSE(fine.wanted());
-  CHECK_FALSE(fine.remake_wanted(0));
+  CHECK_FALSE(fine.remake_wanted(nullptr));
 }
 
 TEST_CASE("of two creases closer than the spacing, the output keeps one", "[remesh][features]")

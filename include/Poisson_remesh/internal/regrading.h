@@ -27,8 +27,9 @@
 // pointed tips) and the input vertices the tessellation could not remove are free to move.
 // The best attempt is kept: fewest crossings, then the largest smallest angle (up to the floor),
 // then the fewest triangles under `min_angle` at no pointed tip.
-// No remake after the second attempt when there is no place to sample finer (see
-// Regrading_places::remake_wanted): it would be the same remesh drawn anew.
+// No remake follows an attempt with no place to sample finer that left the very same fault as
+// the attempt before it (Regrading_places::remake_wanted): a fault that a new draw reproduces
+// does not depend on the draw.
 
 
 #ifndef POISSON_REMESH_INTERNAL_REGRADING_H
@@ -83,13 +84,19 @@ struct Regrading_places
   double floor = 30;
   /// whether the remesh is at fault (it cuts itself, or keeps an angle under the floor)
   bool wanted() const { return crossing_pairs > 0 || min_angle_away < floor; }
-  /// whether attempt `attempt` (0: the first) at fault is worth making again: the first one is
-  /// (a remake also frees the corners left on no feature edge and the input vertices the
-  /// tessellation kept); a later one only when there are places to sample finer. Without places
-  /// (no crossing, every triangle under the floor at a fixed vertex) a remake would differ from
-  /// this attempt by its draw alone: the radii stay as they are and what a remake frees is free
-  /// already.
-  bool remake_wanted(unsigned int attempt) const { return wanted() && (attempt == 0 || !places.empty()); }
+  /// whether this attempt, at fault, is worth making again, given the attempt before it (none:
+  /// this is the first). A remake samples finer around the places; with no place (no crossing,
+  /// every triangle under the floor at a fixed vertex) it keeps the radii and is a new draw
+  /// alone. A first draw may be unlucky, so that remake is made (it also frees the corners left
+  /// on no feature edge and the input vertices the tessellation kept); but when the attempt
+  /// before this one left the very same fault (no crossing and the same smallest angle), the
+  /// fault does not depend on the draw, and no remake follows.
+  bool remake_wanted(const Regrading_places* before) const
+  {
+    if(!wanted()) return false;
+    if(!places.empty() || before == nullptr) return true;
+    return !(crossing_pairs == 0 && before->crossing_pairs == 0 && min_angle_away == before->min_angle_away);
+  }
   /// lexicographic: fewer crossings, then the smallest angle away from corners (up to the floor),
   /// then fewer sharp triangles (at no tip: counted alike in every attempt, whatever is fixed)
   bool better_than(const Regrading_places& o) const
