@@ -20,10 +20,10 @@
 // source, which is a lower bound of the geodesic distance.
 //
 // Accuracy: exact on planar regions (up to the propagation order of the
-// Dijkstra front) and first-order elsewhere.  The tests bound the error with
-// respect to the exact distance by 5% of the distance plus one mean edge
-// length on CGAL data meshes; values are never
-// below the Euclidean distance.  Iso-curves are the level sets of the linear
+// Dijkstra front) and first-order in the edge length elsewhere (the error
+// against the exact distance stays within 5% of the distance plus one mean
+// edge length, which test_geodesic.cpp checks); values are never below the
+// Euclidean distance.  Iso-curves are the level sets of the linear
 // interpolation of the vertex distances: straight segments (`is_segment`).
 //
 // Face-local 2D frame and Face_location barycentric conventions are the ones
@@ -48,8 +48,8 @@
 namespace Poisson_remesh {
 
 /// Approximate geodesic distances, truncated at a radius: a Dijkstra propagation on the vertices
-/// with the one-face unfolding update of fast marching, never below the Euclidean distance (within
-/// 5% of the distance plus one edge length on the tested meshes). A model of the concept
+/// with the one-face unfolding update of fast marching, never below the Euclidean distance (first
+/// order in the edge length: within 5% of the distance plus one edge length). A model of the concept
 /// `GeodesicOracle`, with the interface of `Exact_geodesic_oracle` at a lower cost; its
 /// iso-curves are straight segments (`Iso_arc::is_segment`).
 template <class TriangleMesh,
