@@ -145,13 +145,15 @@ struct Options
   std::string data = POISSON_REMESH_DATA_DIR;
   unsigned int seed = 1, jobs = 1, timeout = 900, peer_iterations = 10, calibrate = 3;
   double peer_sharp_angle = 60;
+  double factor = 1;   // --factor: the target vertex count over the input's
+  PR::Curvature_density curvature;   // --gamma, --edge-ratio: the adaptive contender's density
 };
 static Options options;
 
-// Runs one contender ("cgal", "ours" or "ours-<operator>") on a mesh, in the child.
+// Runs one contender ("cgal", "ours", "ours-adaptive" or "ours-<operator>") on a mesh, in the child.
 static Figures run_contender(const std::string& contender, const Mesh& input)
 {
-  const double target = double(num_vertices(input));
+  const double target = std::max(4.0, std::round(options.factor * double(num_vertices(input))));
   Mesh output;
   Figures f;
   if(contender == "cgal") {
@@ -169,7 +171,11 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
     PR::Relaxation_settings settings;
     bool grading = true;
     unsigned int remakes = 6;
-    const bool ablated = contender != "ours";
+    // ours-adaptive: the curvature density with its defaults, and the library's defaults for it
+    // (no tip grading, no remakes), calibrated to the target like ours
+    const bool adaptive = contender == "ours-adaptive";
+    if(adaptive) { grading = false; remakes = 0; }
+    const bool ablated = contender != "ours" && !adaptive;
     if(ablated) {
       bool found = false;
       for(const Operator& op : operators())
@@ -182,9 +188,10 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
       output.clear();
       std::ofstream("/proc/self/clear_refs") << "5";
       const auto start = std::chrono::steady_clock::now();
-      const auto result = PR::poisson_remesh(input, output, PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
-                                                              .random_seed(options.seed).relaxation_settings(settings)
-                                                              .feature_grading(grading).regrading_attempts(remakes));
+      const auto np = PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
+                        .random_seed(options.seed).relaxation_settings(settings).feature_grading(grading).regrading_attempts(remakes);
+      const auto result = adaptive ? PR::poisson_remesh(input, output, np.density(options.curvature))
+                                   : PR::poisson_remesh(input, output, np);
       f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       f.stages = {{"features", result.seconds_features}, {"sampling", result.seconds_sampling}, {"tessellation", result.seconds_tessellation},
                   {"remake_checks", result.seconds_relaxation - result.seconds_by_step.total()}};
@@ -416,6 +423,9 @@ static std::vector<Row> load_rows(std::istream& in, Options& o)
     if(line.find("\"peer_sharp_angle\": ") != std::string::npos) o.peer_sharp_angle = number(line, "peer_sharp_angle");
     if(line.find("\"jobs\": ") != std::string::npos) o.jobs = unsigned(number(line, "jobs"));
     if(line.find("\"seed\": ") != std::string::npos) o.seed = unsigned(number(line, "seed"));
+    if(line.find("\"factor\": ") != std::string::npos) o.factor = number(line, "factor");
+    if(line.find("\"gamma\": ") != std::string::npos) o.curvature.gamma = number(line, "gamma");
+    if(line.find("\"edge_ratio\": ") != std::string::npos) o.curvature.edge_ratio = number(line, "edge_ratio");
     if(line.find("{\"mesh\": ") == std::string::npos) continue;
     Row r;
     r.mesh = field(line, "mesh");
@@ -445,6 +455,8 @@ int main(int argc, char** argv)
   std::vector<std::string> ablated;
   std::string markdown, json;
   std::vector<std::string> merge;   // --merge: JSON files of earlier runs, tabled instead of a run
+  bool adaptive = false;            // --adaptive: also ours with the curvature density
+  std::vector<std::string> contenders;   // --contenders: instead of cgal, ours (, ours-adaptive, ours-<step>)
   for(int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -462,6 +474,14 @@ int main(int argc, char** argv)
       else if(a == "--peer-iterations") options.peer_iterations = unsigned(std::stoul(value()));
       else if(a == "--peer-sharp-angle") options.peer_sharp_angle = std::stod(value());
       else if(a == "--calibrate") options.calibrate = unsigned(std::stoul(value()));
+      else if(a == "--factor") {
+        options.factor = std::stod(value());
+        if(!(options.factor > 0)) throw std::invalid_argument("factor");
+      }
+      else if(a == "--adaptive") adaptive = true;
+      else if(a == "--gamma") options.curvature.gamma = std::stod(value());
+      else if(a == "--edge-ratio") options.curvature.edge_ratio = std::stod(value());
+      else if(a == "--contenders") contenders = split(value());
       else if(a == "--ablation") {
         const std::string v = value();
         if(v == "all") for(const Operator& op : operators()) ablated.push_back(op.name);
@@ -479,12 +499,17 @@ int main(int argc, char** argv)
         std::cout << "usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices 500] [--max-vertices 40000]\n"
                      "         [--seed 1] [--jobs 1] [--timeout 900] [--peer-iterations 10] [--peer-sharp-angle 60]\n"
                      "         [--calibrate 3] [--ablation all|op,op] [--markdown FILE] [--json FILE]\n"
-                     "         [--merge A.json,B.json]\n"
+                     "         [--merge A.json,B.json] [--factor 1] [--adaptive [--gamma 1] [--edge-ratio 5]]\n"
+                     "         [--contenders cgal,ours,...]\n"
                      "Remeshes every CGAL data mesh within the vertex range at its own vertex count, ours beside\n"
                      "CGAL's isotropic_remeshing, judges the floor, and with --ablation reruns ours with each\n"
                      "step beyond the paper switched off. --merge tables the rows of earlier runs' JSON files\n"
                      "instead (a row of a later file replaces the same mesh and contender of an earlier one: a\n"
-                     "row run again). The steps:\n";
+                     "row run again). --factor F: every contender at F times the input's vertex count.\n"
+                     "--adaptive: also ours with the curvature density (Curvature_density's defaults, or\n"
+                     "--gamma and --edge-ratio), calibrated like ours, and its RMS and Hausdorff distances\n"
+                     "against ours with the uniform density. --contenders runs only those named (cgal, ours,\n"
+                     "ours-adaptive, ours-<step>), to --merge with other runs. The steps:\n";
         for(const Operator& op : operators()) std::cout << "  " << op.name << ": " << op.what << "\n";
         return 0;
       }
@@ -509,7 +534,8 @@ int main(int argc, char** argv)
     meshes.clear();
     for(const Row& r : rows) {
       if(std::find(meshes.begin(), meshes.end(), r.mesh) == meshes.end()) meshes.push_back(r.mesh);
-      if(r.contender.rfind("ours-", 0) == 0 && std::find(ablated.begin(), ablated.end(), r.contender.substr(5)) == ablated.end())
+      if(r.contender == "ours-adaptive") adaptive = true;
+      else if(r.contender.rfind("ours-", 0) == 0 && std::find(ablated.begin(), ablated.end(), r.contender.substr(5)) == ablated.end())
         ablated.push_back(r.contender.substr(5));
     }
   } else {
@@ -525,8 +551,21 @@ int main(int argc, char** argv)
     }
     if(meshes.empty()) { std::cerr << "corpus_benchmark: no mesh in " << options.data << "/meshes\n"; return 1; }
 
-    std::vector<std::string> contenders = {"cgal", "ours"};
-    for(const std::string& op : ablated) contenders.push_back("ours-" + op);
+    for(const std::string& c : contenders) {
+      if(c == "ours-adaptive") adaptive = true;
+      else if(c.rfind("ours-", 0) == 0) {
+        bool known = false;
+        for(const Operator& op : operators()) known = known || "ours-" + op.name == c;
+        if(!known) { std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n"; return 2; }
+        if(std::find(ablated.begin(), ablated.end(), c.substr(5)) == ablated.end()) ablated.push_back(c.substr(5));
+      }
+      else if(c != "cgal" && c != "ours") { std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n"; return 2; }
+    }
+    if(contenders.empty()) {
+      contenders = {"cgal", "ours"};
+      if(adaptive) contenders.push_back("ours-adaptive");
+      for(const std::string& op : ablated) contenders.push_back("ours-" + op);
+    }
     std::vector<Task> tasks;
     for(const std::string& m : meshes)
       for(const std::string& c : contenders) {
@@ -547,7 +586,8 @@ int main(int argc, char** argv)
   };
   std::ostringstream md;
   md << "Corpus: " << meshes.size() << " meshes (CGAL's data set, " << min_vertices << "-" << max_vertices
-     << " vertices), each at its own vertex count, seed " << options.seed << ". Peer: CGAL's isotropic_remeshing, "
+     << " vertices), each at " << (options.factor == 1 ? std::string("its own vertex count") : fmt(options.factor, 2) + " × its vertex count")
+     << ", seed " << options.seed << ". Peer: CGAL's isotropic_remeshing, "
      << options.peer_iterations << " iterations, " << (options.peer_sharp_angle > 0 ? "edges sharper than " + fmt(options.peer_sharp_angle, 0) + "° constrained" : "no edge constrained")
      << ". Time: wall clock of the library call, " << options.jobs << " job(s) at once. Machine: " << machine_description()
      << (merge.empty() ? ". Whole run: " + fmt(total / 60, 1) + " min.\n\n" : ". Rows merged from " + std::to_string(merge.size()) + " runs.\n\n");
@@ -649,6 +689,52 @@ int main(int argc, char** argv)
     md << "\n";
   }
 
+  if(adaptive) {
+    // the curvature density against the uniform one (issue 22: at half the vertex count, the median
+    // RMS distance 25% lower and the median Hausdorff distance 20% lower)
+    std::vector<double> rms_u, rms_a, haus_u, haus_a, rms_ratio, haus_ratio, v_u, v_a, mean_u, mean_a;
+    std::size_t better_rms = 0, better_haus = 0, pairs = 0, passes_a = 0;
+    std::vector<std::string> off_target;
+    md << "\n### Adaptive density (curvature, defaults) against the uniform density\n\n"
+       << "| mesh | V uniform / adaptive (% of target) | RMS (% diag) uniform / adaptive | Hausdorff (% diag) uniform / adaptive | θ̄min uniform / adaptive (°) | θmin away uniform / adaptive (°) |\n"
+       << "|---|---:|---:|---:|---:|---:|\n";
+    for(const std::string& m0 : meshes) {
+      const std::string m = shown(m0);
+      const Row* u = find(m, "ours");
+      const Row* a = find(m, "ours-adaptive");
+      if(a && misses(*a, find(m, "cgal")).empty()) ++passes_a;
+      if(!u || !a || !u->ok || !a->ok || !(u->f.rms > 0) || !(u->f.hausdorff > 0)) continue;
+      // a fair pair: both within 5% of the target (ours's count can resist its calibration)
+      const double target = std::max(4.0, std::round(options.factor * u->input_vertices));
+      if(std::abs(u->f.vertices - target) > 0.05 * target || std::abs(a->f.vertices - target) > 0.05 * target) {
+        off_target.push_back(m);
+        continue;
+      }
+      ++pairs;
+      md << "| " << m << " | " << fmt(100 * u->f.vertices / target, 1) << " / " << fmt(100 * a->f.vertices / target, 1) << " | "
+         << fmt(100 * u->f.rms, 4) << " / " << fmt(100 * a->f.rms, 4) << " | " << fmt(100 * u->f.hausdorff, 3) << " / " << fmt(100 * a->f.hausdorff, 3)
+         << " | " << fmt(u->f.mean_min_angle, 2) << " / " << fmt(a->f.mean_min_angle, 2) << " | " << fmt(u->f.min_angle_away, 1) << " / " << fmt(a->f.min_angle_away, 1) << " |\n";
+      rms_u.push_back(u->f.rms); rms_a.push_back(a->f.rms); haus_u.push_back(u->f.hausdorff); haus_a.push_back(a->f.hausdorff);
+      rms_ratio.push_back(a->f.rms / u->f.rms); haus_ratio.push_back(a->f.hausdorff / u->f.hausdorff);
+      v_u.push_back(u->f.vertices / target); v_a.push_back(a->f.vertices / target);
+      mean_u.push_back(u->f.mean_min_angle); mean_a.push_back(a->f.mean_min_angle);
+      if(a->f.rms < u->f.rms) ++better_rms;
+      if(a->f.hausdorff < u->f.hausdorff) ++better_haus;
+    }
+    auto change = [](double after, double before) { return fmt(100 * (after / before - 1), 1) + "%"; };
+    md << "\nCurvature_density: gamma " << fmt(options.curvature.gamma, 2) << ", edge ratio " << fmt(options.curvature.edge_ratio, 1)
+       << ". " << pairs << " meshes with both within 5% of the target (left out: " << off_target.size();
+    for(std::size_t i = 0; i < off_target.size(); ++i) md << (i ? ", " : ": ") << off_target[i];
+    md << "); the floor holds on " << passes_a << " with the adaptive density.\n\n"
+       << "| | uniform | adaptive | change of the medians | median of the per-mesh ratios | meshes where adaptive is lower |\n|---|---:|---:|---:|---:|---:|\n"
+       << "| RMS (% diag), median | " << fmt(100 * quantile(rms_u, 0.5), 4) << " | " << fmt(100 * quantile(rms_a, 0.5), 4) << " | "
+       << change(quantile(rms_a, 0.5), quantile(rms_u, 0.5)) << " | " << fmt(quantile(rms_ratio, 0.5), 3) << " | " << better_rms << " of " << pairs << " |\n"
+       << "| Hausdorff (% diag), median | " << fmt(100 * quantile(haus_u, 0.5), 3) << " | " << fmt(100 * quantile(haus_a, 0.5), 3) << " | "
+       << change(quantile(haus_a, 0.5), quantile(haus_u, 0.5)) << " | " << fmt(quantile(haus_ratio, 0.5), 3) << " | " << better_haus << " of " << pairs << " |\n"
+       << "| V / target, median | " << fmt(quantile(v_u, 0.5), 3) << " | " << fmt(quantile(v_a, 0.5), 3) << " | | | |\n"
+       << "| θ̄min (°), median | " << fmt(quantile(mean_u, 0.5), 2) << " | " << fmt(quantile(mean_a, 0.5), 2) << " | | | |\n";
+  }
+
   if(!ablated.empty()) {
     // per operator: its run's summary, and the change from all operators on
     md << "\n### Ablation: each step beyond the paper off in turn\n\n"
@@ -697,7 +783,8 @@ int main(int argc, char** argv)
     std::ofstream js(json);
     js.precision(10);
     js << "{\n  \"machine\": \"" << machine_description() << "\",\n  \"seed\": " << options.seed << ",\n  \"peer_iterations\": "
-       << options.peer_iterations << ",\n  \"peer_sharp_angle\": " << options.peer_sharp_angle << ",\n  \"jobs\": " << options.jobs << ",\n  \"rows\": [\n";
+       << options.peer_iterations << ",\n  \"peer_sharp_angle\": " << options.peer_sharp_angle << ",\n  \"jobs\": " << options.jobs << ",\n  \"factor\": " << options.factor
+       << ",\n  \"gamma\": " << options.curvature.gamma << ",\n  \"edge_ratio\": " << options.curvature.edge_ratio << ",\n  \"rows\": [\n";
     for(std::size_t i = 0; i < rows.size(); ++i) {
       const Row& r = rows[i];
       const Figures& f = r.f;
