@@ -731,6 +731,25 @@ TEST_CASE("predicate-driven propagation with the radius predicate matches the ra
       REQUIRE(bool(da) == bool(db));
       if(da) CHECK(*da == *db);
     }
+    // the radius propagation drops the windows beyond the radius, which the predicate keeps (stored,
+    // not propagated): fewer windows, and the same iso-curves
+    CHECK(a.number_of_windows() < b.number_of_windows());
+    for(double level : {0.5 * R, R})
+    {
+      const std::vector<Exact::Iso_curve> ca = a.iso_curve(level), cb = b.iso_curve(level);
+      REQUIRE(ca.size() == cb.size());
+      for(std::size_t i = 0; i < ca.size(); ++i)
+      {
+        REQUIRE(ca[i].arcs.size() == cb[i].arcs.size());
+        CHECK(ca[i].closed == cb[i].closed);
+        for(std::size_t j = 0; j < ca[i].arcs.size(); ++j)
+        {
+          CHECK(ca[i].arcs[j].face == cb[i].arcs[j].face);
+          CHECK(ca[i].arcs[j].theta_start == cb[i].arcs[j].theta_start);
+          CHECK(ca[i].arcs[j].theta_end == cb[i].arcs[j].theta_end);
+        }
+      }
+    }
     // a source vertex is at distance 0; far vertices are reported as unreached, not infinite
     if(s == 0)
     {

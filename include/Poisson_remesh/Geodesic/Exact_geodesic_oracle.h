@@ -189,7 +189,10 @@ public:
   /// Afterwards every vertex / surface point at distance <= radius is reached.
   void propagate(const Face_location& source, double radius)
   {
-    propagate_impl(source, [radius](const Window_geometry& w) { return w.min_distance > radius; }, radius);
+    // a window farther than the radius (beyond the reporting tolerance) is not even stored: no
+    // point it reaches is reported, and it could only trim other windows where they are farther too
+    propagate_impl(source, [radius](const Window_geometry& w) { return w.min_distance > radius; }, radius,
+                   radius * (1. + 1e-9) + m_tol);
   }
 
   /// Exact propagation stopped by a predicate (Section 5.2): `stop(w)` is called
@@ -284,10 +287,11 @@ private:
   // -------------------------------------------------------------------------
 
   template <class Stop>
-  void propagate_impl(const Face_location& source, Stop stop, double report_radius)
+  void propagate_impl(const Face_location& source, Stop stop, double report_radius, double discard_beyond = internal::kInf)
   {
     reset();
     m_radius = report_radius;
+    m_discard_beyond = discard_beyond;
     initialize_windows_from_source(source, stop);
     while(!m_queue.empty())
     {
@@ -537,6 +541,8 @@ private:
     // endpoint distances (a window covering a vertex gives it an upper bound)
     if(w.b0 <= tol_x) update_vertex(m.fv[s], Dw(0.));
     if(w.b1 >= L - tol_x) update_vertex(m.fv[3 * f + (k + 1) % 3], Dw(L));
+    // (trimming only shrinks a window: farther than the bound before it, farther after it)
+    if(window_min_distance(w) > m_discard_beyond) return;
 
     m_pieces.v.clear();
     m_pieces.v.push_back({w.b0, w.b1});
@@ -811,17 +817,33 @@ private:
     return true;
   }
 
-  /// circle (c, r) and the line p + t (q - p): the polar angles around c of the meeting points
-  /// with tmin <= t <= tmax that `accept`
+  /// A cut of a circle, as the unit direction from its center (no angle: the circle's pieces are
+  /// sorted by a pseudo-angle, and an angle is computed only at the ends of the arcs kept).
+  struct Circle_cut
+  {
+    double key;   // pseudo-angle in [0, 4), increasing with the polar angle in [0, 2 pi)
+    Vec2 u;
+  };
+  static double pseudo_angle(Vec2 u)
+  {
+    if(u.y >= 0.) return u.x >= 0. ? u.y / (u.x + u.y) : 1. - u.x / (u.y - u.x);
+    return u.x < 0. ? 2. - u.y / (-u.x - u.y) : 3. + u.x / (u.x - u.y);
+  }
+  static void push_cut(Vec2 x, double r, std::vector<Circle_cut>& out)
+  {
+    const Vec2 u{x.x / r, x.y / r};
+    out.push_back({pseudo_angle(u), u});
+  }
+  /// circle (c, r) and the line p + t (q - p): the directions from c of the meeting points with
+  /// tmin <= t <= tmax that `accept`
   template <class Accept>
-  static void circle_line_angles(Vec2 c, double r, Vec2 p, Vec2 q, std::vector<double>& out, double tmin, double tmax,
-                                 Accept accept)
+  static void circle_line_cuts(Vec2 c, double r, Vec2 p, Vec2 q, std::vector<Circle_cut>& out, double tmin, double tmax,
+                               Accept accept)
   {
     const Vec2 d = q - p;
     const double dd = internal::dot(d, d);
     if(!(dd > 0.)) return;
     const Vec2 pc = p - c;
-    // |pc + t d|^2 = r^2
     const double b = internal::dot(pc, d) / dd;
     const double cc = (internal::dot(pc, pc) - r * r) / dd;
     const double disc = b * b - cc;
@@ -831,13 +853,12 @@ private:
     {
       if(t < tmin || t > tmax) continue;
       const Vec2 x = pc + t * d;
-      if(accept(c + x)) out.push_back(std::atan2(x.y, x.x));
+      if(accept(c + x)) push_cut(x, r, out);
     }
   }
-
-  /// circles (c1, r1) and (c2, r2): the polar angles around c1 of the meeting points that `accept`
+  /// circles (c1, r1) and (c2, r2): the directions from c1 of the meeting points that `accept`
   template <class Accept>
-  static void circle_circle_angles(Vec2 c1, double r1, Vec2 c2, double r2, std::vector<double>& out, Accept accept)
+  static void circle_circle_cuts(Vec2 c1, double r1, Vec2 c2, double r2, std::vector<Circle_cut>& out, Accept accept)
   {
     const Vec2 d = c2 - c1;
     const double D = internal::norm(d);
@@ -845,13 +866,9 @@ private:
     const double a = (r1 * r1 - r2 * r2 + D * D) / (2. * D);
     const double h = std::sqrt((std::max)(0., r1 * r1 - a * a));
     const Vec2 u{d.x / D, d.y / D};
-    const bool first = accept(Vec2{c1.x + a * u.x - h * u.y, c1.y + a * u.y + h * u.x});
-    const bool second = accept(Vec2{c1.x + a * u.x + h * u.y, c1.y + a * u.y - h * u.x});
-    if(!first && !second) return;
-    const double base = std::atan2(d.y, d.x);
-    const double phi = std::atan2(h, a);
-    if(first) out.push_back(base + phi);
-    if(second) out.push_back(base - phi);
+    const Vec2 first{a * u.x - h * u.y, a * u.y + h * u.x}, second{a * u.x + h * u.y, a * u.y - h * u.x};
+    if(accept(c1 + first)) push_cut(first, r1, out);
+    if(accept(c1 + second)) push_cut(second, r1, out);
   }
 
   /// The level of an iso-curve inside a face: level(x) = a . x + b in the face frame (a = 0: a
@@ -1014,9 +1031,9 @@ private:
       // the curve of generator g: |x - c| = r + a . (x - c), r = level(c) - sigma (a circle of
       // radius R - sigma when the level is constant)
       auto curve_radius = [&](const Generator& g) { return level.at(g.c) - g.sigma; };
-      auto curve_point = [&](const Generator& g, double r, double th) {
+      auto curve_point = [&](const Generator& g, double r, double th) {   // (on a conic)
         const Vec2 u{std::cos(th), std::sin(th)};
-        return g.c + (conic ? r / (1. - internal::dot(level.a, u)) : r) * u;
+        return g.c + (r / (1. - internal::dot(level.a, u))) * u;
       };
       for(std::size_t gi = 0; gi < gens.size(); ++gi)
       {
@@ -1031,15 +1048,30 @@ private:
           contains = internal::norm(x) - r - internal::dot(level.a, x) < 0.;
         }
         if(contains) continue;
-        // the curve is cut where a piece's classification can change: where it crosses the
+        // a piece of curve is kept when its midpoint lies in the face, in g's wedge, and no other
+        // generator gives a distance below the level there
+        auto keep_point = [&](Vec2 p) {
+          if(!inside_face(f, p)) return false;
+          if(!(generator_value(g, p) < internal::kInf)) return false;
+          const double L = level.at(p);
+          for(std::size_t hi = 0; hi < gens.size(); ++hi)
+          {
+            if(hi == gi) continue;
+            const double dh = generator_value(gens[hi], p);
+            if(dh < L - tie || (dh <= L + tie && hi < gi)) return false;
+          }
+          return true;
+        };
+        if(!conic)
+        {   // a constant level: g's circle (the same cuts and classification without angles)
+          extract_circle_arcs(f, g, gi, r, P, gens, cut_margin, near_face, keep_point, Lmax, level.a, arcs);
+          continue;
+        }
+        // the conic is cut where a piece's classification can change: where it crosses the
         // face's edges, a wedge boundary or another generator's curve inside the face (a cut
         // outside the face would only split a piece that is dropped anyway)
         angles.clear();
-        for(int i = 0; i < 3; ++i)
-        {
-          if(conic) conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
-          else circle_line_angles(g.c, r, P[i], P[(i + 1) % 3], angles, -cut_margin, 1. + cut_margin, [](Vec2) { return true; });
-        }
+        for(int i = 0; i < 3; ++i) conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
         if(angles.empty() && !inside_face(f, curve_point(g, r, 0.))) continue;
         for(std::size_t hi = 0; hi < gens.size(); ++hi)
         {
@@ -1047,20 +1079,11 @@ private:
           if(h.window != nullptr)
           {
             const Vec2 a = h.eo + h.window->b0 * h.eu, b = h.eo + h.window->b1 * h.eu;
-            if(conic)
-            {
-              conic_line_angles(g.c, r, level.a, h.c, a, angles);
-              conic_line_angles(g.c, r, level.a, h.c, b, angles);
-            }
-            else
-            {   // (the wedge's sides begin on the window's edge: t >= 1)
-              circle_line_angles(g.c, r, h.c, a, angles, 1. - cut_margin, internal::kInf, near_face);
-              circle_line_angles(g.c, r, h.c, b, angles, 1. - cut_margin, internal::kInf, near_face);
-            }
+            conic_line_angles(g.c, r, level.a, h.c, a, angles);
+            conic_line_angles(g.c, r, level.a, h.c, b, angles);
           }
           if(hi == gi) continue;
-          if(conic) conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
-          else circle_circle_angles(g.c, r, h.c, curve_radius(h), angles, near_face);
+          conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
         }
         for(double& a : angles)
         {
@@ -1078,18 +1101,7 @@ private:
           const double a1 = (i + 1 < na) ? angles[i + 1] : angles[0] + 2. * internal::kPi;
           if(!(a1 - a0 > 1e-13)) continue;
           const double am = 0.5 * (a0 + a1);
-          const Vec2 p = curve_point(g, r, am);
-          if(!inside_face(f, p)) continue;
-          if(!(generator_value(g, p) < internal::kInf)) continue;
-          const double L = level.at(p);
-          bool ok = true;
-          for(std::size_t hi = 0; hi < gens.size() && ok; ++hi)
-          {
-            if(hi == gi) continue;
-            const double dh = generator_value(gens[hi], p);
-            if(dh < L - tie || (dh <= L + tie && hi < gi)) ok = false;
-          }
-          if(!ok) continue;
+          if(!keep_point(curve_point(g, r, am))) continue;
           if(!kept.empty() && std::abs(kept.back().second - a0) < 1e-15)
             kept.back().second = a1;
           else
@@ -1103,25 +1115,123 @@ private:
         }
         for(const auto& I : kept)
         {
-          const double rm = conic ? internal::norm(curve_point(g, r, 0.5 * (I.first + I.second)) - g.c) : r;
+          const double rm = internal::norm(curve_point(g, r, 0.5 * (I.first + I.second)) - g.c);
           if(!(rm * (I.second - I.first) > 1e-12 * Lmax)) continue;
-          Iso_arc arc;
-          arc.face = m.face_of[f];
-          arc.center = {{g.c.x, g.c.y}};
-          arc.radius = r;
-          arc.gradient = {{level.a.x, level.a.y}};
-          arc.sigma = g.sigma;
-          arc.theta_start = I.first;
-          arc.theta_end = I.second;
-          for(int i = 0; i < 3; ++i)
-          {
-            const auto& q = m.pos[m.fv[3 * f + i]];
-            arc.corners[i] = Point_3(q[0], q[1], q[2]);
-          }
-          arc.layout = {{m.flayout[3 * f], m.flayout[3 * f + 1], m.flayout[3 * f + 2]}};
-          arcs.push_back(arc);
+          push_arc(f, g, r, level.a, I.first, I.second, arcs);
         }
       }
+    }
+  }
+
+  void push_arc(int f, const Generator& g, double r, Vec2 gradient, double theta_start, double theta_end,
+                std::vector<Iso_arc>& arcs) const
+  {
+    Iso_arc arc;
+    arc.face = m.face_of[f];
+    arc.center = {{g.c.x, g.c.y}};
+    arc.radius = r;
+    arc.gradient = {{gradient.x, gradient.y}};
+    arc.sigma = g.sigma;
+    arc.theta_start = theta_start;
+    arc.theta_end = theta_end;
+    for(int i = 0; i < 3; ++i)
+    {
+      const auto& q = m.pos[m.fv[3 * f + i]];
+      arc.corners[i] = Point_3(q[0], q[1], q[2]);
+    }
+    arc.layout = {{m.flayout[3 * f], m.flayout[3 * f + 1], m.flayout[3 * f + 2]}};
+    arcs.push_back(arc);
+  }
+
+  /// extract_iso_arcs() for generator g (number gi of `gens`) when the level is constant in face
+  /// f: its circle of radius r, cut as the general path cuts a curve, but with the cuts as
+  /// directions sorted by a pseudo-angle and each piece's midpoint found by halving the angle
+  /// between its ends' directions; an angle (atan2) is computed only at the ends of a kept arc.
+  template <class NearFace, class KeepPoint>
+  void extract_circle_arcs(int f, const Generator& g, std::size_t gi, double r, const Vec2 P[3], const std::vector<Generator>& gens,
+                           double cut_margin, NearFace near_face, KeepPoint keep_point, double Lmax, Vec2 gradient,
+                           std::vector<Iso_arc>& arcs) const
+  {
+    thread_local std::vector<Circle_cut> cuts;
+    cuts.clear();
+    for(int i = 0; i < 3; ++i)
+      circle_line_cuts(g.c, r, P[i], P[(i + 1) % 3], cuts, -cut_margin, 1. + cut_margin, [](Vec2) { return true; });
+    if(cuts.empty() && !inside_face(f, Vec2{g.c.x + r, g.c.y})) return;
+    for(std::size_t hi = 0; hi < gens.size(); ++hi)
+    {
+      const Generator& h = gens[hi];
+      if(h.window != nullptr)
+      {   // (the wedge's sides begin on the window's edge: t >= 1)
+        const Vec2 a = h.eo + h.window->b0 * h.eu, b = h.eo + h.window->b1 * h.eu;
+        circle_line_cuts(g.c, r, h.c, a, cuts, 1. - cut_margin, internal::kInf, near_face);
+        circle_line_cuts(g.c, r, h.c, b, cuts, 1. - cut_margin, internal::kInf, near_face);
+      }
+      if(hi == gi) continue;
+      circle_circle_cuts(g.c, r, h.c, Lmax - h.sigma, cuts, near_face);   // (a constant level: Lmax)
+    }
+    std::sort(cuts.begin(), cuts.end(), [](const Circle_cut& a, const Circle_cut& b) { return a.key < b.key; });
+    if(cuts.empty()) cuts.push_back({0., Vec2{1., 0.}});
+    // the pieces between consecutive cuts (cyclically); ks: a piece's span in pseudo-angle (4: the
+    // whole circle), which tells a span over pi (ks > 2) from one under it
+    const std::size_t n = cuts.size();
+    struct Run
+    {
+      std::size_t first, last;   // from cut `first` to cut `last` (modulo n)
+      double ks;                 // its span in pseudo-angle
+    };
+    thread_local std::vector<Run> runs;   // the kept pieces, consecutive ones merged
+    runs.clear();
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Circle_cut& A = cuts[i];
+      const Circle_cut& B = cuts[(i + 1) % n];
+      const double ks = (n == 1) ? 4. : (i + 1 < n ? B.key - A.key : 4. - (A.key - B.key));
+      const double cr = internal::cross(A.u, B.u), dt = internal::dot(A.u, B.u);
+      if(ks <= 2. && dt > 0. && cr <= 1e-13) continue;   // a piece shorter than 1e-13 radians
+      // the direction halfway from A to B, counter-clockwise
+      Vec2 mid;
+      const Vec2 sum = A.u + B.u;
+      if(internal::dot(sum, sum) > 0.5)
+      {
+        const double l = internal::norm(sum) * (ks < 2. ? 1. : -1.);
+        mid = Vec2{sum.x / l, sum.y / l};
+      }
+      else
+      {   // (the ends nearly opposite: cos and sin of half the span from its cosine)
+        const double c = std::sqrt((std::max)(0., 0.5 * (1. + dt))) * (ks < 2. ? 1. : -1.), sn = std::sqrt((std::max)(0., 0.5 * (1. - dt)));
+        mid = Vec2{c * A.u.x - sn * A.u.y, c * A.u.y + sn * A.u.x};
+      }
+      if(!keep_point(g.c + r * mid)) continue;
+      if(!runs.empty() && (runs.back().last == i || (cuts[runs.back().last % n].u.x == A.u.x && cuts[runs.back().last % n].u.y == A.u.y)))
+      {
+        runs.back().last = i + 1;
+        runs.back().ks += ks;
+      }
+      else
+        runs.push_back({i, i + 1, ks});
+    }
+    // merge the last run with the first across the seam
+    if(runs.size() >= 2 && runs.back().last == n && runs.front().first == 0)
+    {
+      runs.front().first = runs.back().first;
+      runs.front().ks += runs.back().ks;
+      runs.pop_back();
+    }
+    for(const Run& run : runs)
+    {
+      const Vec2 us = cuts[run.first % n].u, ue = cuts[run.last % n].u;
+      const double t0 = std::atan2(us.y, us.x);
+      double span;
+      if(run.ks >= 4.) span = 2. * internal::kPi;   // the whole circle
+      else
+      {   // (a pseudo-angle span of 1 is a quarter turn give or take 0.08 radians: the margins)
+        span = std::atan2(ue.y, ue.x) - t0;
+        if(span < 0.) span += 2. * internal::kPi;
+        if(run.ks > 3. && span < 0.5 * internal::kPi) span += 2. * internal::kPi;        // near 2 pi, rounded to near 0
+        else if(run.ks < 1. && span > 1.5 * internal::kPi) span -= 2. * internal::kPi;   // near 0, rounded to near 2 pi
+      }
+      if(!(r * span > 1e-12 * Lmax)) continue;
+      push_arc(f, g, r, gradient, t0, t0 + span, arcs);
     }
   }
 
@@ -1273,6 +1383,7 @@ private:
   Mesh m;
   double m_tol = 0.;
   double m_radius = 0.;
+  double m_discard_beyond = internal::kInf;   // windows whose minimal distance exceeds this are dropped
   std::vector<double> m_dist, m_pseudo_done;
   std::vector<int> m_touched_vertices, m_touched_edges;
   std::vector<std::vector<int> > m_edge_windows;
