@@ -9,10 +9,11 @@
 #             against its remesh on six meshes, the parallel mode on five, the bad-input table
 #             and the pictures (fandisk, triceratops, cheese, head: input, ours and CGAL's);
 #   (full)    also the adaptive comparison (seven models beside CGAL's, and adaptive against
-#             uniform over the whole corpus at half the vertex count), the program's overhead on every CGAL data mesh with
-#             500-40,000 vertices, the corpus run (every such mesh, ours beside CGAL's, the floor;
-#             again with the peer's sharp edges free), the scale series (10k to 1.2M faces, about
-#             15 minutes) and both fuzz targets on 100,000 inputs each (about 25 minutes).
+#             uniform over the whole corpus at half the vertex count), the program's overhead
+#             on every CGAL data mesh with 500-40,000 vertices, the corpus run (every such mesh,
+#             ours beside CGAL's, the floor; again with the peer's sharp edges free), the scale
+#             series (10k to 1.2M faces, about 15 minutes) and both fuzz targets on 100,000
+#             inputs each (about 25 minutes).
 #   --ablation  (full mode) also the corpus again with each step beyond the paper switched off
 #             in turn (generated/corpus_ablation.md, about an hour more).
 #
@@ -31,7 +32,7 @@ while [ $# -gt 0 ]; do
     --ablation) ablation=1 ;;
     --build) build="$2"; shift ;;
     --out) out="$2"; shift ;;
-    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_all.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift

@@ -140,6 +140,13 @@ static std::vector<Operator> operators()
   };
 }
 
+// whether `name` is the name of one of operators()
+static bool is_operator(const std::string& name)
+{
+  for(const Operator& op : operators()) if(op.name == name) return true;
+  return false;
+}
+
 struct Options
 {
   std::string data = POISSON_REMESH_DATA_DIR;
@@ -487,9 +494,7 @@ int main(int argc, char** argv)
         if(v == "all") for(const Operator& op : operators()) ablated.push_back(op.name);
         else ablated = split(v);
         for(const std::string& name : ablated) {
-          bool known = false;
-          for(const Operator& op : operators()) known = known || op.name == name;
-          if(!known) { std::cerr << "corpus_benchmark: unknown operator " << name << " (see --help)\n"; return 2; }
+          if(!is_operator(name)) { std::cerr << "corpus_benchmark: unknown operator " << name << " (see --help)\n"; return 2; }
         }
       }
       else if(a == "--merge") merge = split(value());
@@ -552,14 +557,13 @@ int main(int argc, char** argv)
     if(meshes.empty()) { std::cerr << "corpus_benchmark: no mesh in " << options.data << "/meshes\n"; return 1; }
 
     for(const std::string& c : contenders) {
-      if(c == "ours-adaptive") adaptive = true;
-      else if(c.rfind("ours-", 0) == 0) {
-        bool known = false;
-        for(const Operator& op : operators()) known = known || "ours-" + op.name == c;
-        if(!known) { std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n"; return 2; }
-        if(std::find(ablated.begin(), ablated.end(), c.substr(5)) == ablated.end()) ablated.push_back(c.substr(5));
+      const bool step = c.rfind("ours-", 0) == 0 && is_operator(c.substr(5));
+      if(c != "cgal" && c != "ours" && c != "ours-adaptive" && !step) {
+        std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n";
+        return 2;
       }
-      else if(c != "cgal" && c != "ours") { std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n"; return 2; }
+      if(c == "ours-adaptive") adaptive = true;
+      if(step && std::find(ablated.begin(), ablated.end(), c.substr(5)) == ablated.end()) ablated.push_back(c.substr(5));
     }
     if(contenders.empty()) {
       contenders = {"cgal", "ours"};

@@ -844,6 +844,7 @@ private:
     const double dd = internal::dot(d, d);
     if(!(dd > 0.)) return;
     const Vec2 pc = p - c;
+    // |pc + t d|^2 = r^2
     const double b = internal::dot(pc, d) / dd;
     const double cc = (internal::dot(pc, pc) - r * r) / dd;
     const double disc = b * b - cc;
@@ -1064,7 +1065,7 @@ private:
         };
         if(!conic)
         {   // a constant level: g's circle (the same cuts and classification without angles)
-          extract_circle_arcs(f, g, gi, r, P, gens, cut_margin, near_face, keep_point, Lmax, level.a, arcs);
+          extract_circle_arcs(f, g, gi, r, P, gens, cut_margin, near_face, keep_point, level.b, arcs);
           continue;
         }
         // the conic is cut where a piece's classification can change: where it crosses the
@@ -1143,14 +1144,13 @@ private:
     arcs.push_back(arc);
   }
 
-  /// extract_iso_arcs() for generator g (number gi of `gens`) when the level is constant in face
+  /// extract_iso_arcs() for generator g (number gi of `gens`) when the level R is constant in face
   /// f: its circle of radius r, cut as the general path cuts a curve, but with the cuts as
   /// directions sorted by a pseudo-angle and each piece's midpoint found by halving the angle
   /// between its ends' directions; an angle (atan2) is computed only at the ends of a kept arc.
   template <class NearFace, class KeepPoint>
   void extract_circle_arcs(int f, const Generator& g, std::size_t gi, double r, const Vec2 P[3], const std::vector<Generator>& gens,
-                           double cut_margin, NearFace near_face, KeepPoint keep_point, double Lmax, Vec2 gradient,
-                           std::vector<Iso_arc>& arcs) const
+                           double cut_margin, NearFace near_face, KeepPoint keep_point, double R, std::vector<Iso_arc>& arcs) const
   {
     thread_local std::vector<Circle_cut> cuts;
     cuts.clear();
@@ -1167,7 +1167,7 @@ private:
         circle_line_cuts(g.c, r, h.c, b, cuts, 1. - cut_margin, internal::kInf, near_face);
       }
       if(hi == gi) continue;
-      circle_circle_cuts(g.c, r, h.c, Lmax - h.sigma, cuts, near_face);   // (a constant level: Lmax)
+      circle_circle_cuts(g.c, r, h.c, R - h.sigma, cuts, near_face);
     }
     std::sort(cuts.begin(), cuts.end(), [](const Circle_cut& a, const Circle_cut& b) { return a.key < b.key; });
     if(cuts.empty()) cuts.push_back({0., Vec2{1., 0.}});
@@ -1230,8 +1230,8 @@ private:
         if(run.ks > 3. && span < 0.5 * internal::kPi) span += 2. * internal::kPi;        // near 2 pi, rounded to near 0
         else if(run.ks < 1. && span > 1.5 * internal::kPi) span -= 2. * internal::kPi;   // near 0, rounded to near 2 pi
       }
-      if(!(r * span > 1e-12 * Lmax)) continue;
-      push_arc(f, g, r, gradient, t0, t0 + span, arcs);
+      if(!(r * span > 1e-12 * R)) continue;
+      push_arc(f, g, r, Vec2{0., 0.}, t0, t0 + span, arcs);
     }
   }
 

@@ -122,9 +122,9 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     return h | 1;
   };
   // the search from v's point: where v should go (its point when nowhere better); `c` its
-  // movability, `anchor` its pin (pinned_only). It reads v's star alone, so that vertices that are
+  // movability, `pin` where it is pinned (pinned_only). It reads v's star alone, so that vertices that are
   // not neighbours can search at the same time with the same results.
-  auto search = [&](vertex_descriptor v, int c, const Point_3* anchor) -> Point_3 {
+  auto search = [&](vertex_descriptor v, int c, const Point_3* pin) -> Point_3 {
     const Point_3 start = get(vpm, v);
     Point_3 p = start;
     // the triangles around the vertex being moved, read once for its whole search (its
@@ -201,7 +201,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         const Point_3 q = in_plane ? t : c == 0 ? ctx.project_on_surface(t, p) : ctx.project_on_features(t, p);
         if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
         if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
-        if(anchor != nullptr && CGAL::to_double(CGAL::squared_distance(q, *anchor)) > pin_reach * pin_reach) continue;
+        if(pin != nullptr && CGAL::to_double(CGAL::squared_distance(q, *pin)) > pin_reach * pin_reach) continue;
         const double a = objective(q);
         if(a > best_here + 1e-9) { best_here = a; best_q = q; }
       }
@@ -217,7 +217,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   // in the order of `todo`; with CGAL::Parallel_tag, in rounds of vertices whose earlier
   // neighbours have searched (internal/parallel.h), each round at once, what they found taken in
   // in order after it: the sequential search's result
-  struct Found { vertex_descriptor v; int c; const Point_3* anchor; std::uint64_t digest; bool unchanged; Point_3 start, p; };
+  struct Found { vertex_descriptor v; int c; const Point_3* pin; std::uint64_t digest; bool unchanged; Point_3 start, p; };
   std::vector<Found> found;
   for(const auto& round : Poisson_remesh::internal::dependency_rounds(m, todo)) {
     found.clear();
@@ -233,7 +233,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         const auto it = unmoved->find(x.v);
         if(it != unmoved->end() && it->second == x.digest) { x.unchanged = true; return; }
       }
-      x.p = search(x.v, x.c, x.anchor);
+      x.p = search(x.v, x.c, x.pin);
       // (no other vertex of this round reads v's point: it is in none of their rings)
       if(x.p != x.start) put(vpm, x.v, x.p);
     });
