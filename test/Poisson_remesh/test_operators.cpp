@@ -473,3 +473,46 @@ TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[opera
   CHECK(!reference.empty());
   CHECK(local == reference);
 }
+
+TEST_CASE("the untangling's face box grid finds every face whose box meets a box, after moves too", "[operators][intersections]")
+{
+  // a 10 x 10 grid with one huge triangle (its box covers the whole grid: kept aside), judged
+  // against a scan of every face's box; then vertices move and their faces' boxes are updated
+  Mesh m = square(10);
+  const V far_a = m.add_vertex(Point(-5, -5, 1)), far_b = m.add_vertex(Point(6, -5, 1)), far_c = m.add_vertex(Point(0, 6, 1));
+  REQUIRE(m.add_face(far_a, far_b, far_c) != Mesh::null_face());
+  auto box_of = [&](Mesh::Face_index f) {
+    CGAL::Bbox_3 b;
+    for(V v : vertices_around_face(halfedge(f, m), m)) b += m.point(v).bbox();
+    return b;
+  };
+  P::internal::Face_box_grid<Mesh> grid(faces(m), box_of);
+  auto check = [&](const CGAL::Bbox_3& q) {
+    std::vector<Mesh::Face_index> found, expected;
+    grid.overlapping(q, found);
+    for(auto f : faces(m)) if(CGAL::do_overlap(box_of(f), q)) expected.push_back(f);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    std::sort(expected.begin(), expected.end());
+    CHECK(found == expected);
+    return expected.size();
+  };
+  std::size_t met = 0;
+  for(int k = 0; k < 40; ++k) {   // query boxes from a point to a tenth of the square, and one larger than it
+    const double x = 0.037 * (k % 27), y = 0.029 * (k % 34), s = k == 39 ? 3.0 : 0.0025 * k;
+    met += check(CGAL::Bbox_3(x, y, -0.01, x + s, y + s, 0.01));
+  }
+  CHECK(met > 40);
+  // the vertices of a row moved up and sideways (their faces' boxes grow), then the queries again
+  for(V v : vertices(m)) {
+    const Point p = m.point(v);
+    if(p.z() != 0 || std::abs(p.y() - 0.5) > 1e-9) continue;
+    m.point(v) = Point(p.x() + 0.13, p.y() + 0.2, 0.3);
+    for(auto h : halfedges_around_target(halfedge(v, m), m))
+      if(!is_border(h, m)) grid.update(face(h, m), box_of(face(h, m)));
+  }
+  for(int k = 0; k < 40; ++k) {
+    const double x = 0.031 * (k % 31), y = 0.023 * (k % 43), s = 0.004 * k;
+    check(CGAL::Bbox_3(x, y, 0.1, x + s, y + s, 0.35));
+  }
+}

@@ -14,7 +14,9 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/Postprocessing/internal/face_box_grid.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <algorithm>
 #include <array>
 #include <map>
@@ -48,30 +50,43 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   auto pairs = Poisson_remesh::internal::intersecting_pairs(m);
   if(pairs.empty() || pairs.size() > num_faces(m)) return 0;
   auto vpm = get(CGAL::vertex_point, m);
-  // the faces' boxes, kept up to date by `refresh` after each change (taken back or not); the
-  // crossing pairs that involve one of the faces of `fs` (sorted) are looked for among the
-  // faces whose boxes meet theirs (intersecting_pairs_near would box the whole mesh each time)
-  auto box = get(CGAL::dynamic_face_property_t<CGAL::Bbox_3>(), m);
+  // the faces' boxes in a grid, kept up to date by `refresh` after each change (taken back or
+  // not); the crossing pairs that involve one of the faces of `fs` (sorted) are looked for among
+  // the faces whose boxes meet theirs (intersecting_pairs_near would box the whole mesh each
+  // time, and a scan of every face's box for each trial was most of the untangling's time)
   auto box_of = [&](face_descriptor f) {
     CGAL::Bbox_3 b;
     for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, x).bbox();
     return b;
   };
-  for(face_descriptor f : faces(m)) put(box, f, box_of(f));
-  auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) put(box, f, box_of(f)); };
+  internal::Face_box_grid<Mesh> grid(faces(m), box_of);
+  auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) grid.update(f, box_of(f)); };
   std::vector<face_descriptor> near;
   auto crossings = [&](const std::vector<face_descriptor>& fs) {
     refresh(fs);
     near = fs;
-    for(face_descriptor g : faces(m))
-      for(face_descriptor f : fs)
-        if(g != f && CGAL::do_overlap(get(box, g), get(box, f))) { near.push_back(g); break; }
+    for(face_descriptor f : fs) grid.overlapping(box_of(f), near);
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
     std::size_t n = 0;
     for(const auto& fp : Poisson_remesh::internal::intersecting_pairs(m, near))
       if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
     return n;
+  };
+  // the crossing pairs once the faces of `changed` moved or were flipped: those of the other faces
+  // stay as they were (their points and neighbours did not change), those of `changed` are
+  // looked for near them -- the pairs a search of the whole mesh finds, without it
+  std::vector<face_descriptor> changed;
+  auto update_pairs = [&] {
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    if(changed.empty()) return;
+    auto is_changed = [&](face_descriptor f) { return std::binary_search(changed.begin(), changed.end(), f); };
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& fp) { return is_changed(fp.first) || is_changed(fp.second); }), pairs.end());
+    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(m, changed))
+      if(is_changed(fp.first) || is_changed(fp.second)) pairs.push_back(fp);
+    std::sort(pairs.begin(), pairs.end());
+    changed.clear();
   };
   const double floor = s.min_angle * CGAL_PI / 180;
   std::size_t done = 0;
@@ -125,12 +140,13 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     if(best < before) {
       put(vpm, v, best_q);
       refresh(fs);
+      changed.insert(changed.end(), fs.begin(), fs.end());
       ++done;
       ++stats.untangle_changes;
     }
   }
   // flips of the edges of the faces still crossing
-  pairs = Poisson_remesh::internal::intersecting_pairs(m);
+  update_pairs();
   const double cos_max = std::cos(60 * CGAL_PI / 180);
   std::vector<typename boost::graph_traits<Mesh>::edge_descriptor> es;
   for(const auto& fp : pairs)
@@ -152,6 +168,8 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     CGAL::Euler::flip_edge(h, m);
     std::vector<face_descriptor> gs = {face(h, m), face(opposite(h, m), m)};
     std::sort(gs.begin(), gs.end());
+    // (a flip taken back may leave the two triangles each in the other's face: both changed)
+    changed.insert(changed.end(), gs.begin(), gs.end());
     if(crossings(gs) < before) { ++done; ++stats.untangle_changes; }
     else {
       CGAL::Euler::flip_edge(h, m);
@@ -162,10 +180,11 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   // (with `collapses`) a free vertex shared by two faces still crossing -- its fan folded over on
   // a part thinner than the triangles, a claw -- goes into a free neighbour, which keeps
   // its place, when the triangles around it cross fewer others and keep untangle_collapse_min_angle;
-  // tried on a copy of the mesh; the caller optimizes the angles there again
+  // tried on a copy of the faces near the edge (the whole mesh when those faces do not make a
+  // mesh on their own); the caller optimizes the angles there again
   if(collapses != nullptr) {
     typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
-    pairs = Poisson_remesh::internal::intersecting_pairs(m);
+    update_pairs();
     std::vector<vertex_descriptor> shared;
     for(const auto& fp : pairs)
       for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(fp.first, m), m))
@@ -175,8 +194,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
     const double collapse_floor = s.collapse_min_angle * CGAL_PI / 180;
     std::set<vertex_descriptor> gone;
-    // (each trial copies the whole mesh: at most 64 per pass, a large input folded in many
-    // places would spend its time there)
+    // (at most 64 trials per pass: a large input folded in many places would spend its time there)
     std::size_t trials = 0;
     const std::size_t max_trials = 64;
     // the crossings of the faces around the vertices `around` (in m, or in a copy of it)
@@ -199,11 +217,47 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         const std::size_t before = crossings_near(m, xy);
         if(before == 0 || trials >= max_trials) continue;
         ++trials;
+        // the copy: the faces whose boxes meet the box of x's and y's stars -- every face that a
+        // triangle around the collapsed vertex can meet, each with its neighbours there, so that
+        // the crossings counted around it are those of a whole copy -- or the whole mesh
         Mesh copy;
-        std::map<halfedge_descriptor, typename boost::graph_traits<Mesh>::halfedge_descriptor> h2h;
-        CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
+        halfedge_descriptor hc = boost::graph_traits<Mesh>::null_halfedge();
+        {
+          CGAL::Bbox_3 around;
+          for(vertex_descriptor v : xy)
+            for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) around += get(vpm, v).bbox() + get(vpm, w).bbox();
+          std::map<vertex_descriptor, vertex_descriptor> v2v;
+          auto copy_vpm = get(CGAL::vertex_point, copy);
+          bool valid = true;
+          std::array<vertex_descriptor, 3> corners;
+          for(face_descriptor f : faces(m)) {
+            CGAL::Bbox_3 b;
+            for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, w).bbox();
+            if(!CGAL::do_overlap(b, around)) continue;
+            int k = 0;
+            for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, m), m)) {
+              auto it = v2v.find(w);
+              if(it == v2v.end()) {
+                it = v2v.emplace(w, add_vertex(copy)).first;
+                put(copy_vpm, it->second, get(vpm, w));
+              }
+              corners[k++] = it->second;
+            }
+            if(CGAL::Euler::add_face(corners, copy) == boost::graph_traits<Mesh>::null_face()) { valid = false; break; }
+          }
+          if(valid) {
+            const auto found = halfedge(v2v[y], v2v[x], copy);
+            if(found.second) hc = found.first;
+          }
+          if(hc == boost::graph_traits<Mesh>::null_halfedge()) {
+            clear(copy);
+            std::map<halfedge_descriptor, halfedge_descriptor> h2h;
+            CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
+            hc = h2h[h];
+          }
+        }
         const Point_3 at = get(vpm, y);
-        const auto z = CGAL::Euler::collapse_edge(edge(h2h[h], copy), copy);
+        const auto z = CGAL::Euler::collapse_edge(edge(hc, copy), copy);
         put(get(CGAL::vertex_point, copy), z, at);
         if(!(ctx.smallest_angles_around(z, copy, at).first >= collapse_floor)) continue;
         const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z));

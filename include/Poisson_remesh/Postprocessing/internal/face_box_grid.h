@@ -1,0 +1,139 @@
+// Poisson_remesh/Postprocessing/internal/face_box_grid.h
+//
+// The bounding boxes of a mesh's faces in a uniform grid, kept up to date as faces move (internal):
+// the faces whose boxes meet a given box are found among the few cells it covers instead of by a
+// scan of every face. The untangling asks it once per trial position of a vertex or flip.
+
+#ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
+#define POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
+
+#include <CGAL/Bbox_3.h>
+#include <boost/graph/graph_traits.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace Poisson_remesh {
+namespace Postprocessing {
+namespace internal {
+
+/// The faces of a mesh by the grid cells their boxes cover. A face whose box covers more than
+/// `max_cells` cells (much larger than the others) is kept in a list of its own that every query
+/// scans. Cells are hashed: two cells that share a key only add candidates, which the exact box
+/// test drops.
+template <class Mesh>
+class Face_box_grid
+{
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  struct Entry { CGAL::Bbox_3 box; std::vector<std::uint64_t> keys; bool big = false; bool in = false; };
+
+public:
+  /// `boxes(f)`: the box of face f; the cell side is the mean of the boxes' largest extents
+  template <class FaceRange, class BoxOf>
+  Face_box_grid(const FaceRange& fs, BoxOf boxes)
+  {
+    double sum = 0;
+    std::size_t n = 0;
+    for(face_descriptor f : fs) {
+      const CGAL::Bbox_3 b = boxes(f);
+      sum += (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
+      ++n;
+    }
+    cell_ = n > 0 && sum > 0 && std::isfinite(sum) ? sum / double(n) : 1.0;
+    for(face_descriptor f : fs) insert(f, boxes(f));
+  }
+
+  /// the box of f is now `b` (f new, or moved)
+  void update(face_descriptor f, const CGAL::Bbox_3& b)
+  {
+    remove(f);
+    insert(f, b);
+  }
+
+  /// appends to `out` each face g whose box meets `b` (closed boxes, as CGAL::do_overlap), in no
+  /// particular order and possibly more than once
+  void overlapping(const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) const
+  {
+    for(face_descriptor g : big_)
+      if(CGAL::do_overlap(entries_.at(g).box, b)) out.push_back(g);
+    std::int64_t lo[3], hi[3];
+    if(!range(b, lo, hi)) {   // (a huge query: every face is looked at)
+      for(const auto& e : entries_)
+        if(e.second.in && !e.second.big && CGAL::do_overlap(e.second.box, b)) out.push_back(e.first);
+      return;
+    }
+    for(std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for(std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for(std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const auto it = cells_.find(key(x, y, z));
+          if(it == cells_.end()) continue;
+          for(face_descriptor g : it->second)
+            if(CGAL::do_overlap(entries_.at(g).box, b)) out.push_back(g);
+        }
+  }
+
+private:
+  static constexpr std::int64_t max_cells = 64;
+  // the cells of b's box, false when it covers more than max_cells (or is not finite)
+  bool range(const CGAL::Bbox_3& b, std::int64_t lo[3], std::int64_t hi[3]) const
+  {
+    double count = 1;
+    for(int i = 0; i < 3; ++i) {
+      const double a = std::floor(b.min(i) / cell_), c = std::floor(b.max(i) / cell_);
+      if(!(std::abs(a) < 1e15 && std::abs(c) < 1e15)) return false;
+      lo[i] = std::int64_t(a);
+      hi[i] = std::int64_t(c);
+      count *= double(hi[i] - lo[i] + 1);
+    }
+    return count <= double(max_cells);
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z)
+  {
+    return (std::uint64_t(x) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(y) * 0xC2B2AE3D27D4EB4Full) ^ (std::uint64_t(z) * 0x165667B19E3779F9ull);
+  }
+  void insert(face_descriptor f, const CGAL::Bbox_3& b)
+  {
+    Entry& e = entries_[f];
+    e.box = b;
+    e.in = true;
+    e.keys.clear();
+    std::int64_t lo[3], hi[3];
+    e.big = !range(b, lo, hi);
+    if(e.big) { big_.push_back(f); return; }
+    for(std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for(std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for(std::int64_t z = lo[2]; z <= hi[2]; ++z) e.keys.push_back(key(x, y, z));
+    std::sort(e.keys.begin(), e.keys.end());
+    e.keys.erase(std::unique(e.keys.begin(), e.keys.end()), e.keys.end());
+    for(std::uint64_t k : e.keys) cells_[k].push_back(f);
+  }
+  void remove(face_descriptor f)
+  {
+    const auto it = entries_.find(f);
+    if(it == entries_.end() || !it->second.in) return;
+    Entry& e = it->second;
+    if(e.big) big_.erase(std::find(big_.begin(), big_.end(), f));
+    for(std::uint64_t k : e.keys) {
+      std::vector<face_descriptor>& c = cells_[k];
+      c.erase(std::find(c.begin(), c.end(), f));
+    }
+    e.keys.clear();
+    e.in = false;
+  }
+
+  double cell_ = 1;
+  std::map<face_descriptor, Entry> entries_;
+  std::unordered_map<std::uint64_t, std::vector<face_descriptor>> cells_;
+  std::vector<face_descriptor> big_;
+};
+
+} // namespace internal
+} // namespace Postprocessing
+} // namespace Poisson_remesh
+
+#endif // POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
