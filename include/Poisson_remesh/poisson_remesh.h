@@ -40,7 +40,7 @@ namespace Poisson_remesh {
 
 namespace internal {
 // the relaxer's collapses and removals leave removed elements in a Surface_mesh (its BGL
-// num_vertices() and friends count them, and its indices have holes); the output has none
+// num_vertices() and friends count them, and its indices have gaps); the output has none
 template <class Mesh> void collect_garbage(Mesh&) {}
 template <class P> void collect_garbage(CGAL::Surface_mesh<P>& m) { m.collect_garbage(); }
 } // namespace internal

@@ -65,7 +65,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   auto crossings = [&](const std::vector<face_descriptor>& fs) {
     refresh(fs);
     near = fs;
-    for(face_descriptor f : fs) grid.overlapping(box_of(f), near);
+    for(face_descriptor f : fs) grid.overlapping(grid.box(f), near);
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
     std::size_t n = 0;
@@ -205,6 +205,40 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
       return n;
     };
+    // copies into `copy` the faces whose boxes meet the box of the stars of h's ends -- every face
+    // that a triangle around the vertex h collapses into can meet, each with its neighbours there,
+    // so that the crossings counted around it are those of a whole copy -- or the whole mesh when
+    // those faces do not make a mesh on their own; returns h's halfedge in the copy
+    auto copy_near = [&](halfedge_descriptor h, Mesh& copy) {
+      CGAL::Bbox_3 around;
+      for(vertex_descriptor v : {source(h, m), target(h, m)})
+        for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) around += get(vpm, v).bbox() + get(vpm, w).bbox();
+      std::map<vertex_descriptor, vertex_descriptor> v2v;
+      auto copy_vpm = get(CGAL::vertex_point, copy);
+      bool valid = true;
+      for(face_descriptor f : faces(m)) {
+        if(!CGAL::do_overlap(box_of(f), around)) continue;
+        std::array<vertex_descriptor, 3> corners;
+        int k = 0;
+        for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, m), m)) {
+          auto it = v2v.find(w);
+          if(it == v2v.end()) {
+            it = v2v.emplace(w, add_vertex(copy)).first;
+            put(copy_vpm, it->second, get(vpm, w));
+          }
+          corners[k++] = it->second;
+        }
+        if(CGAL::Euler::add_face(corners, copy) == boost::graph_traits<Mesh>::null_face()) { valid = false; break; }
+      }
+      if(valid) {
+        const auto found = halfedge(v2v[source(h, m)], v2v[target(h, m)], copy);
+        if(found.second) return found.first;
+      }
+      clear(copy);
+      std::map<halfedge_descriptor, halfedge_descriptor> h2h;
+      CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
+      return h2h[h];
+    };
     for(vertex_descriptor x : shared) {
       if(gone.count(x) || ctx.constraint(x, m, is_feature, is_fixed) != 0) continue;
       halfedge_descriptor best_h = boost::graph_traits<Mesh>::null_halfedge();
@@ -217,45 +251,8 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         const std::size_t before = crossings_near(m, xy);
         if(before == 0 || trials >= max_trials) continue;
         ++trials;
-        // the copy: the faces whose boxes meet the box of x's and y's stars -- every face that a
-        // triangle around the collapsed vertex can meet, each with its neighbours there, so that
-        // the crossings counted around it are those of a whole copy -- or the whole mesh
         Mesh copy;
-        halfedge_descriptor hc = boost::graph_traits<Mesh>::null_halfedge();
-        {
-          CGAL::Bbox_3 around;
-          for(vertex_descriptor v : xy)
-            for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m)) around += get(vpm, v).bbox() + get(vpm, w).bbox();
-          std::map<vertex_descriptor, vertex_descriptor> v2v;
-          auto copy_vpm = get(CGAL::vertex_point, copy);
-          bool valid = true;
-          std::array<vertex_descriptor, 3> corners;
-          for(face_descriptor f : faces(m)) {
-            CGAL::Bbox_3 b;
-            for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, w).bbox();
-            if(!CGAL::do_overlap(b, around)) continue;
-            int k = 0;
-            for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, m), m)) {
-              auto it = v2v.find(w);
-              if(it == v2v.end()) {
-                it = v2v.emplace(w, add_vertex(copy)).first;
-                put(copy_vpm, it->second, get(vpm, w));
-              }
-              corners[k++] = it->second;
-            }
-            if(CGAL::Euler::add_face(corners, copy) == boost::graph_traits<Mesh>::null_face()) { valid = false; break; }
-          }
-          if(valid) {
-            const auto found = halfedge(v2v[y], v2v[x], copy);
-            if(found.second) hc = found.first;
-          }
-          if(hc == boost::graph_traits<Mesh>::null_halfedge()) {
-            clear(copy);
-            std::map<halfedge_descriptor, halfedge_descriptor> h2h;
-            CGAL::copy_face_graph(m, copy, CGAL::parameters::halfedge_to_halfedge_output_iterator(std::inserter(h2h, h2h.end())));
-            hc = h2h[h];
-          }
-        }
+        const halfedge_descriptor hc = copy_near(h, copy);
         const Point_3 at = get(vpm, y);
         const auto z = CGAL::Euler::collapse_edge(edge(hc, copy), copy);
         put(get(CGAL::vertex_point, copy), z, at);

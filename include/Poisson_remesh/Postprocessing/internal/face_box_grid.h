@@ -30,7 +30,7 @@ template <class Mesh>
 class Face_box_grid
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-  struct Entry { CGAL::Bbox_3 box; std::vector<std::uint64_t> keys; bool big = false; bool in = false; };
+  struct Entry { CGAL::Bbox_3 box; std::vector<std::uint64_t> keys; bool big = false; };
 
 public:
   /// `boxes(f)`: the box of face f; the cell side is the mean of the boxes' largest extents
@@ -55,6 +55,9 @@ public:
     insert(f, b);
   }
 
+  /// the box of f, as last given
+  const CGAL::Bbox_3& box(face_descriptor f) const { return entries_.at(f).box; }
+
   /// appends to `out` each face g whose box meets `b` (closed boxes, as CGAL::do_overlap), in no
   /// particular order and possibly more than once
   void overlapping(const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) const
@@ -64,7 +67,7 @@ public:
     std::int64_t lo[3], hi[3];
     if(!range(b, lo, hi)) {   // (a huge query: every face is looked at)
       for(const auto& e : entries_)
-        if(e.second.in && !e.second.big && CGAL::do_overlap(e.second.box, b)) out.push_back(e.first);
+        if(!e.second.big && CGAL::do_overlap(e.second.box, b)) out.push_back(e.first);
       return;
     }
     for(std::int64_t x = lo[0]; x <= hi[0]; ++x)
@@ -100,7 +103,6 @@ private:
   {
     Entry& e = entries_[f];
     e.box = b;
-    e.in = true;
     e.keys.clear();
     std::int64_t lo[3], hi[3];
     e.big = !range(b, lo, hi);
@@ -115,7 +117,7 @@ private:
   void remove(face_descriptor f)
   {
     const auto it = entries_.find(f);
-    if(it == entries_.end() || !it->second.in) return;
+    if(it == entries_.end()) return;
     Entry& e = it->second;
     if(e.big) big_.erase(std::find(big_.begin(), big_.end(), f));
     for(std::uint64_t k : e.keys) {
@@ -123,7 +125,6 @@ private:
       c.erase(std::find(c.begin(), c.end(), f));
     }
     e.keys.clear();
-    e.in = false;
   }
 
   double cell_ = 1;
