@@ -157,7 +157,7 @@ struct Options
 };
 static Options options;
 
-// Runs one contender ("cgal", "ours", "ours-adaptive" or "ours-<operator>") on a mesh, in the child.
+// Runs one contender ("cgal", "ours", "ours-adaptive", "ours-local" or "ours-<operator>") on a mesh, in the child.
 static Figures run_contender(const std::string& contender, const Mesh& input)
 {
   const double target = std::max(4.0, std::round(options.factor * double(num_vertices(input))));
@@ -178,11 +178,13 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
     PR::Relaxation_settings settings;
     bool grading = true;
     unsigned int remakes = 6;
+    // ours-local: the remakes of the regions at fault alone (local_remakes), calibrated like ours
+    const bool local = contender == "ours-local";
     // ours-adaptive: the curvature density with its defaults, and the library's defaults for it
     // (no tip grading, no remakes), calibrated to the target like ours
     const bool adaptive = contender == "ours-adaptive";
     if(adaptive) { grading = false; remakes = 0; }
-    const bool ablated = contender != "ours" && !adaptive;
+    const bool ablated = contender != "ours" && !adaptive && !local;
     if(ablated) {
       bool found = false;
       for(const Operator& op : operators())
@@ -196,7 +198,7 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
       std::ofstream("/proc/self/clear_refs") << "5";
       const auto start = std::chrono::steady_clock::now();
       const auto np = PR::parameters::target_vertex_count(std::size_t(std::max(4.0, std::round(asked))))
-                        .random_seed(options.seed).relaxation_settings(settings).feature_grading(grading).regrading_attempts(remakes);
+                        .random_seed(options.seed).relaxation_settings(settings).feature_grading(grading).regrading_attempts(remakes).local_remakes(local);
       const auto result = adaptive ? PR::poisson_remesh(input, output, np.density(options.curvature))
                                    : PR::poisson_remesh(input, output, np);
       f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -514,7 +516,8 @@ int main(int argc, char** argv)
                      "--adaptive: also ours with the curvature density (Curvature_density's defaults, or\n"
                      "--gamma and --edge-ratio), calibrated like ours, and its RMS and Hausdorff distances\n"
                      "against ours with the uniform density. --contenders runs only those named (cgal, ours,\n"
-                     "ours-adaptive, ours-<step>), to --merge with other runs. The steps:\n";
+                     "ours-adaptive, ours-local: the remakes of the regions at fault alone, ours-<step>), to\n"
+                     "--merge with other runs. The steps:\n";
         for(const Operator& op : operators()) std::cout << "  " << op.name << ": " << op.what << "\n";
         return 0;
       }
@@ -540,6 +543,7 @@ int main(int argc, char** argv)
     for(const Row& r : rows) {
       if(std::find(meshes.begin(), meshes.end(), r.mesh) == meshes.end()) meshes.push_back(r.mesh);
       if(r.contender == "ours-adaptive") adaptive = true;
+      else if(r.contender == "ours-local") continue;
       else if(r.contender.rfind("ours-", 0) == 0 && std::find(ablated.begin(), ablated.end(), r.contender.substr(5)) == ablated.end())
         ablated.push_back(r.contender.substr(5));
     }
@@ -558,7 +562,7 @@ int main(int argc, char** argv)
 
     for(const std::string& c : contenders) {
       const bool step = c.rfind("ours-", 0) == 0 && is_operator(c.substr(5));
-      if(c != "cgal" && c != "ours" && c != "ours-adaptive" && !step) {
+      if(c != "cgal" && c != "ours" && c != "ours-adaptive" && c != "ours-local" && !step) {
         std::cerr << "corpus_benchmark: unknown contender " << c << " (see --help)\n";
         return 2;
       }
@@ -655,6 +659,7 @@ int main(int argc, char** argv)
   std::ostringstream summary;
   summary_of("ours", summary, true);
   summary_of("cgal", summary, false);
+  if(std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.contender == "ours-local"; })) summary_of("ours-local", summary, false);
   md << summary.str();
   // where our time goes: each stage's share of the corpus total, and its median share per mesh
   {

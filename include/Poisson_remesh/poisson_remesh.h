@@ -16,6 +16,7 @@
 #include <Poisson_remesh/Tessellation/mutual_tessellation.h>
 #include <Poisson_remesh/internal/feature_grading.h>
 #include <Poisson_remesh/internal/repair_degenerate_faces.h>
+#include <Poisson_remesh/internal/local_remake.h>
 #include <Poisson_remesh/internal/regrading.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
@@ -153,6 +154,10 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
                                     parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
   const unsigned int regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), regrading_by_default ? 6u : 0u);
   const internal::Regrading_settings regrading;
+  const bool local_remakes = choose_parameter(get_parameter(np, internal_np::local_remakes), false);
+  const internal::Local_remake_settings local_remake;
+  const bool use_local_remakes = local_remakes && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value &&
+                                 parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
   std::optional<internal::Reference_crossings<TriangleMesh>> input_crossings;   // (found when first needed)
   const Feature_set<TriangleMesh> detected_features = features;   // (the sampling drops crowded curves from its copy)
   const Poisson_remesh_result first = result;
@@ -315,9 +320,48 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     const bool last = !places.remake_wanted(attempt == 0 ? nullptr : &previous_places) || attempt >= regrading_attempts ||
                       double(num_vertices(output)) > regrading.max_growth * double(first_count);
     output_is_best = attempt == 0 || places.better_than(best_places);
+    // (a result that cuts itself is made again whole: the crossings of a crumpled input follow its
+    // pleats, features and all, beyond any one region)
+    const bool remake_locally = use_local_remakes && attempt == 0 && places.crossing_pairs == 0;
     if(output_is_best) {
       best_places = places;
-      if(!last) { clear(best); CGAL::copy_face_graph(output, best); best_result = result; }
+      if(!last && !remake_locally) { clear(best); CGAL::copy_face_graph(output, best); best_result = result; }
+    }
+    // (compiled only where `local_remakes` is given: it instantiates the tessellation and the
+    // relaxation once more, for the patches)
+    if constexpr(default_relaxer && parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value &&
+                 !parameters::is_default_parameter<NamedParameters, internal_np::local_remakes_t>::value) {
+      if(remake_locally && !last) {
+        // the remakes redo the regions at fault alone (internal/local_remake.h), each on the best
+        // output so far: a remake that does not make it better is taken back
+        seconds[2] += since(t);
+        internal::Local_remake_undo<TriangleMesh> undo;
+        for(unsigned int k = 1;; ++k) {
+          t = now();
+          internal::regrade_radii(input, in_vpm, radius, best_places.places, radii, regrading);
+          ++regraded;
+          internal::Local_remake_statistics remake;
+          const bool changed = internal::with_geodesic_oracle(input, in_vpm, np, [&](const auto& oracle) {
+            // (around the triangles at fault at a fixed vertex too: drawn anew, not finer)
+            std::vector<Point_3> around = best_places.places;
+            around.insert(around.end(), best_places.fixed_places.begin(), best_places.fixed_places.end());
+            return internal::remake_regions(input, in_vpm, oracle, *relaxer, settings, output, kind_map, is_feature, is_tip, around,
+                                            radius, radii, seed + regrading.seed_step * k, local_remake, remake, undo);
+          });
+          bool stop = remake.region_vertices == 0 || k >= regrading_attempts;
+          if(changed) {
+            const auto current = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+            if(current.better_than(best_places)) best_places = current;
+            else internal::undo_remake(output, kind_map, undo);
+            internal::collect_garbage(output);
+            stop = stop || !best_places.wanted() || double(num_vertices(output)) > regrading.max_growth * double(first_count);
+          }
+          seconds[2] += since(t);
+          if(stop) break;
+        }
+        output_is_best = true;
+        break;
+      }
     }
     if(!last) {
       internal::regrade_radii(input, in_vpm, radius, places.places, radii, regrading);

@@ -963,3 +963,78 @@ TEST_CASE("poisson_remesh removes the zero-area faces of its input first, unless
   Mesh refused;
   CHECK_THROWS_AS(PR::poisson_remesh(in, refused, PR::parameters::target_vertex_count(80).strict_input(true)), std::invalid_argument);
 }
+
+TEST_CASE("a local remake draws the region around a place anew, finer, leaves the rest as it was, and is taken back", "[remesh][local_remake]")
+{
+  // the input, and the output before the remake: a unit square of 40 x 40 split squares; the
+  // output's border vertices are feature samples (the corners corners), the others surface samples
+  const Mesh in = analytic::plane(40, 40).to_mesh<Mesh>();
+  const auto features = PR::detect_features(in);
+  Mesh out = in;
+  auto kind = get(CGAL::dynamic_vertex_property_t<int>(), out);
+  std::size_t border_vertices = 0;
+  for(auto v : vertices(out)) {
+    int degree_on_border = 0;
+    for(auto h : CGAL::halfedges_around_target(v, out)) if(is_border(edge(h, out), out)) ++degree_on_border;
+    const bool corner = degree_on_border > 0 && degree(v, out) == 2;
+    put(kind, v, int(corner ? PR::Sample_kind::corner : degree_on_border > 0 ? PR::Sample_kind::feature : PR::Sample_kind::surface));
+    if(degree_on_border > 0) ++border_vertices;
+  }
+  auto is_feature = [&](boost::graph_traits<Mesh>::edge_descriptor e) { return is_border(e, out); };
+  auto is_tip = [](boost::graph_traits<Mesh>::vertex_descriptor) { return false; };
+  const double r = 0.0125;   // (the spacing 2r: the grid's)
+  const Point place(0.5, 0.5, 0);
+  std::vector<double> radii;
+  PR::internal::regrade_radii(in, get(CGAL::vertex_point, in), r, std::vector<Point>{place}, radii);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const PR::Exact_geodesic_oracle<Mesh, boost::property_map<Mesh, CGAL::vertex_point_t>::const_type> oracle(in, get(CGAL::vertex_point, in));
+  const PR::internal::Local_remake_settings settings;
+  PR::internal::Local_remake_statistics stats;
+  PR::internal::Local_remake_undo<Mesh> undo;
+  auto near = [&](const Mesh& m, double d) {
+    std::size_t n = 0;
+    for(auto v : vertices(m)) if(CGAL::squared_distance(m.point(v), place) < d * d) ++n;
+    return n;
+  };
+  const std::size_t near_before = near(out, 2 * r);
+  REQUIRE(PR::internal::remake_regions(in, get(CGAL::vertex_point, in), oracle, relaxer, PR::Relaxation_settings(), out, kind, is_feature, is_tip,
+                                       std::vector<Point>{place}, r, radii, 7u, settings, stats, undo));
+  CHECK(stats.region_vertices > 0);
+  CHECK(stats.new_samples > 0);
+  // finer around the place (radii a quarter of r there: about 16 times the density)
+  CHECK(near(out, 2 * r) >= 4 * near_before);
+  // beyond the patch (the region's reach and an edge), the very same vertices
+  const double beyond = (settings.region_reach + 3) * r;
+  std::vector<Point> far_in, far_out;
+  for(auto v : vertices(in)) if(CGAL::squared_distance(in.point(v), place) > beyond * beyond) far_in.push_back(in.point(v));
+  for(auto v : vertices(out)) if(!out.is_removed(v) && CGAL::squared_distance(out.point(v), place) > beyond * beyond) far_out.push_back(out.point(v));
+  std::sort(far_in.begin(), far_in.end());
+  std::sort(far_out.begin(), far_out.end());
+  CHECK(far_in == far_out);
+  // a valid disk with the same border, every new triangle shaped, nothing off the plane
+  Mesh check = out;
+  check.collect_garbage();
+  CHECK(CGAL::is_valid_polygon_mesh(check));
+  CHECK(long(num_vertices(check)) - long(num_edges(check)) + long(num_faces(check)) == 1);
+  std::size_t border_after = 0;
+  for(auto h : halfedges(check)) if(is_border(h, check)) ++border_after;
+  CHECK(border_after == border_vertices);
+  double smallest = 180;
+  for(auto f : faces(check)) {
+    const auto h = halfedge(f, check);
+    const Point p[3] = {check.point(source(h, check)), check.point(target(h, check)), check.point(target(next(h, check), check))};
+    for(int k = 0; k < 3; ++k) smallest = std::min(smallest, CGAL::to_double(CGAL::approximate_angle(p[(k + 1) % 3], p[k], p[(k + 2) % 3])));
+  }
+  CHECK(smallest > 20);
+  for(auto v : vertices(check)) CHECK(std::abs(check.point(v).z()) < 1e-12);
+  // taken back: the output before the remake, vertex for vertex
+  PR::internal::undo_remake(out, kind, undo);
+  out.collect_garbage();
+  std::vector<Point> all_in, all_out;
+  for(auto v : vertices(in)) all_in.push_back(in.point(v));
+  for(auto v : vertices(out)) all_out.push_back(out.point(v));
+  std::sort(all_in.begin(), all_in.end());
+  std::sort(all_out.begin(), all_out.end());
+  CHECK(all_in == all_out);
+  CHECK(num_faces(out) == num_faces(in));
+}

@@ -27,6 +27,8 @@ POISSON_REMESH_add_named_parameter(fidelity_tolerance_t, fidelity_tolerance, fid
 POISSON_REMESH_add_named_parameter(feature_grading_t, feature_grading, feature_grading)
 // remesher: remeshes made again, finer where the last one crossed itself or kept sharp triangles
 POISSON_REMESH_add_named_parameter(regrading_attempts_t, regrading_attempts, regrading_attempts)
+// remesher: a remake redoes only the regions at fault (false: the whole remesh)
+POISSON_REMESH_add_named_parameter(local_remakes_t, local_remakes, local_remakes)
 POISSON_REMESH_add_named_parameter(relaxation_settings_t, relaxation_settings, relaxation_settings)
 
 // input reading and validation

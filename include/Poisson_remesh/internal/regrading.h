@@ -46,7 +46,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <limits>
+#include <unordered_map>
 #include <optional>
 #include <vector>
 
@@ -75,6 +76,9 @@ template <class Point_3>
 struct Regrading_places
 {
   std::vector<Point_3> places;
+  /// the centroids of the triangles under the angle with a fixed vertex (at no pointed tip): no
+  /// place to sample finer, but one to draw anew (internal/local_remake.h)
+  std::vector<Point_3> fixed_places;
   std::size_t crossing_pairs = 0;    ///< face pairs of the output that cut each other, away from the input's own
   std::size_t sharp_free = 0;        ///< triangles under the angle none of whose vertices is fixed
   std::size_t sharp = 0;             ///< triangles under the angle at no pointed tip (fixed vertices or not)
@@ -158,12 +162,72 @@ regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixe
     }
     if(!sharp) continue;
     ++r.sharp;
-    if(fixed) continue;
+    if(fixed) { r.fixed_places.push_back(centroid_of(f)); continue; }
     ++r.sharp_free;
     r.places.push_back(centroid_of(f));
   }
   return r;
 }
+
+// "Within d of one of the points" for a point set (cells of side `cell`, d <= cell).
+template <class Point_3>
+class Near_points
+{
+  typedef std::array<long long, 3> Cell;
+  struct Hash { std::size_t operator()(const Cell& c) const { return std::size_t(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL); } };
+
+public:
+  Near_points(const std::vector<Point_3>& points, double cell) : cell_(cell)
+  {
+    for(const Point_3& p : points) cells_[cell_of(p)].push_back(p);
+  }
+  /// the squared distance to the nearest point when it is within one cell (else infinity)
+  double squared_distance(const Point_3& p) const
+  {
+    double best = std::numeric_limits<double>::infinity();
+    const Cell c = cell_of(p);
+    for(long long dx = -1; dx <= 1; ++dx)
+      for(long long dy = -1; dy <= 1; ++dy)
+        for(long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}});
+          if(it == cells_.end()) continue;
+          for(const Point_3& q : it->second) best = std::min(best, CGAL::to_double(CGAL::squared_distance(p, q)));
+        }
+    return best;
+  }
+  /// whether a point lies within `d` (<= the cell) of the triangle (a, b, c)
+  template <class Triangle_3>
+  bool near_triangle(const Triangle_3& t, double d) const
+  {
+    const auto box = t.bbox();
+    const Cell lo = cell_of(box.xmin() - d, box.ymin() - d, box.zmin() - d), hi = cell_of(box.xmax() + d, box.ymax() + d, box.zmax() + d);
+    const double span = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
+    auto near = [&](const Point_3& q) { return CGAL::to_double(CGAL::squared_distance(q, t)) < d * d; };
+    if(span > double(cells_.size())) {   // (a triangle larger than the places' spread: every point)
+      for(const auto& kv : cells_)
+        for(const Point_3& q : kv.second) if(near(q)) return true;
+      return false;
+    }
+    for(long long x = lo[0]; x <= hi[0]; ++x)
+      for(long long y = lo[1]; y <= hi[1]; ++y)
+        for(long long z = lo[2]; z <= hi[2]; ++z) {
+          const auto it = cells_.find(Cell{{x, y, z}});
+          if(it == cells_.end()) continue;
+          for(const Point_3& q : it->second) if(near(q)) return true;
+        }
+    return false;
+  }
+
+private:
+  Cell cell_of(double x, double y, double z) const
+  {
+    return Cell{{(long long)std::floor(x / cell_), (long long)std::floor(y / cell_), (long long)std::floor(z / cell_)}};
+  }
+  Cell cell_of(const Point_3& p) const { return cell_of(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); }
+
+  double cell_;
+  std::unordered_map<Cell, std::vector<Point_3>, Hash> cells_;
+};
 
 /// Lowers `radii` (by vertex index of `input`; filled with `radius` when empty) around `places`:
 /// see the file's comment.
@@ -173,30 +237,11 @@ void regrade_radii(const InputMesh& input, VPM vpm, double radius, const std::ve
 {
   auto vim = CGAL::get_initialized_vertex_index_map(input);
   if(radii.empty()) radii.assign(vertex_index_bound(input), radius);
-  typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
   const double reach = s.reach * radius, reach2 = reach * reach;
   const double first = s.first_ratio * radius, smallest = s.smallest_ratio * radius;
-  // the places in a grid of cells of side `reach`: a vertex looks at its cell and the 26 around
   // (a folded input may have thousands of places)
-  typedef std::array<long long, 3> Cell;
-  auto cell_of = [&](const Point_3& p) {
-    return Cell{{(long long)std::floor(CGAL::to_double(p.x()) / reach), (long long)std::floor(CGAL::to_double(p.y()) / reach),
-                 (long long)std::floor(CGAL::to_double(p.z()) / reach)}};
-  };
-  std::map<Cell, std::vector<Point_3>> grid;
-  for(const Point_3& q : places) grid[cell_of(q)].push_back(q);
-  auto near = [&](const Point_3& p) {
-    const Cell c = cell_of(p);
-    for(long long dx = -1; dx <= 1; ++dx)
-      for(long long dy = -1; dy <= 1; ++dy)
-        for(long long dz = -1; dz <= 1; ++dz) {
-          const auto it = grid.find(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}});
-          if(it == grid.end()) continue;
-          for(const Point_3& q : it->second)
-            if(CGAL::to_double(typename K::Compute_squared_distance_3()(p, q)) < reach2) return true;
-        }
-    return false;
-  };
+  const Near_points<Point_3> near_places(places, reach);
+  auto near = [&](const Point_3& p) { return near_places.squared_distance(p) < reach2; };
   Radius_queue queue;
   for(auto v : vertices(input)) {
     if(!near(get(vpm, v))) continue;
