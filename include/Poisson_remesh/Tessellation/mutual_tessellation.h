@@ -77,8 +77,8 @@ struct Mutual_tessellation_settings
   double max_removal_normal_deviation = 60;
   /// when a pass removes nothing, the bound above is raised to this one for the vertices left
   /// (mostly tips of thin parts, where a kept original vertex causes more self-intersections than
-  /// a steeper triangle does: measured, 120 halves the leftovers and the intersections touching
-  /// them); set it equal to max_removal_normal_deviation to disable the escalation.
+  /// a steeper triangle does); set it equal to max_removal_normal_deviation to disable the
+  /// escalation.
   double max_removal_normal_deviation_last_resort = 120;
   /// after the paper's steps, flip edges of self-intersecting faces when that removes crossings
   /// (thin parts sampled with few samples across; not in the paper).
