@@ -110,63 +110,117 @@ private:
   Face_tree faces_;
 };
 
-// poisson_remesh() on an input without zero-area faces; `input` is read through the
-// vertex_point_map of `np` (if any)
-template <class ConcurrencyTag, class TriangleMesh, class NamedParameters>
-Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMesh& output, const NamedParameters& np)
+// A named parameter left at its default (`sampler`, `relaxer`, `geodesic_oracle`): the package's
+// own model runs.
+struct Default_model {};
+inline const Default_model* model_pointer(const CGAL::internal_np::Param_not_found&) { return nullptr; }
+template <class T> const T* model_pointer(const T& t) { return &t; }
+template <class T> T* model_pointer(const std::reference_wrapper<T>& t) { return &t.get(); }
+
+// What the stages take from the named parameters, read once by read_remesh_options(): the
+// pipeline below is compiled once per mesh type and choice of models, not once per combination
+// of named parameters (each of which is a type of its own).
+template <class TriangleMesh>
+struct Remesh_options
+{
+  std::vector<double> vertex_radii;   // the disk radius at each vertex (adaptive density); empty: uniform
+  double radius = 0;                  // the disk radius (adaptive: the median of vertex_radii)
+  Feature_set<TriangleMesh> features;
+  bool feature_grading = true;
+  unsigned int regrading_attempts = 0;
+  bool local_remakes = false;
+  unsigned int seed = 0;
+  Relaxation_settings settings;
+  double seconds_features = 0;
+};
+
+template <class TriangleMesh, class VPM, class NamedParameters>
+Remesh_options<TriangleMesh> read_remesh_options(const TriangleMesh& input, VPM in_vpm, const NamedParameters& np, Progress_reporter& progress)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  typedef typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type Point_3;
+  using parameters::is_default_parameter;
+  const auto start = std::chrono::steady_clock::now();
+  Remesh_options<TriangleMesh> o;
+  progress.set_span(0, 0.02);
+  progress("features", 0, 1);
+  o.vertex_radii = vertex_radii_from_parameters(input, in_vpm, np);
+  o.radius = o.vertex_radii.empty() ? sampling_radius_from_parameters(input, in_vpm, np) : quantile(o.vertex_radii, 0.5);
+  // one feature set for the sampler and the tessellation
+  o.features = detect_features_at_radius(input, o.radius, np);
+  o.feature_grading = choose_parameter(get_parameter(np, internal_np::feature_grading), true);
+  // (the remakes, by default only for a uniform density and the default relaxer: an adaptive
+  // density is the user's choice of where to be finer, a user's relaxer may not aim at 30
+  // degrees, and a user's sampler may not follow the finer radii)
+  const bool own_models = is_default_parameter<NamedParameters, internal_np::relaxer_t>::value &&
+                          is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
+  o.regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), o.vertex_radii.empty() && own_models ? 6u : 0u);
+  o.local_remakes = own_models && choose_parameter(get_parameter(np, internal_np::local_remakes), false);
+  o.seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  // (the operators' switches: Relaxation_settings' defaults unless given whole; the two named
+  // parameters below override their members)
+  o.settings = choose_parameter(get_parameter(np, internal_np::relaxation_settings), Relaxation_settings());
+  o.settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), o.settings.iterations);
+  o.settings.fidelity.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), o.settings.fidelity.max_deviation);
+  if(!(o.settings.fidelity.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
+  o.seconds_features = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return o;
+}
+
+// poisson_remesh() on an input without zero-area faces, read through `in_vpm`, with the options
+// read from the named parameters. Sampler, Relaxer, Oracle: the user's models, or Default_model
+// (then the pointer is null). LocalRemakes: the local remakes are compiled in (only where the
+// `local_remakes` named parameter is given: they instantiate the tessellation and the relaxation
+// once more, for the patches).
+template <class ConcurrencyTag, bool LocalRemakes, class TriangleMesh, class VPM, class Sampler, class Relaxer, class Oracle>
+Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm, TriangleMesh& output, const Remesh_options<TriangleMesh>& options,
+                                          Progress_reporter& progress, const Sampler* user_sampler, Relaxer* user_relaxer, const Oracle* user_oracle)
+{
+  typedef typename boost::property_traits<VPM>::value_type Point_3;
   typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
   typedef boost::graph_traits<TriangleMesh> GT;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   typedef typename GT::edge_descriptor edge_descriptor;
+  constexpr bool default_sampler = std::is_same<std::remove_const_t<Sampler>, Default_model>::value;
+  constexpr bool default_relaxer = std::is_same<std::remove_const_t<Relaxer>, Default_model>::value;
+  constexpr bool default_oracle = std::is_same<std::remove_const_t<Oracle>, Default_model>::value;
   auto now = [] { return std::chrono::steady_clock::now(); };
   auto since = [&](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(now() - t).count(); };
+  // the geodesic oracle of the default sampler: the user's, or an exact one on the input
+  auto with_oracle = [&](auto f) -> decltype(auto) {
+    if constexpr(default_oracle) return f(Exact_geodesic_oracle<TriangleMesh, VPM>(input, in_vpm));
+    else return f(*user_oracle);
+  };
 
   Poisson_remesh_result result;
-  auto in_vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, input));
-  if(faces(input).empty()) throw std::invalid_argument("poisson_remesh: the mesh has no faces");
-  Progress_reporter progress(np);
-  progress.set_span(0, 0.02);
-  progress("features", 0, 1);
-  auto t = now();
-  const std::vector<double> vertex_radii = internal::vertex_radii_from_parameters(input, in_vpm, np);
-  const double radius = vertex_radii.empty() ? internal::sampling_radius_from_parameters(input, in_vpm, np)
-                                             : internal::quantile(vertex_radii, 0.5);
-  // one feature set for the sampler and the tessellation
-  Feature_set<TriangleMesh> features = internal::detect_features_at_radius(input, radius, np);
+  result.seconds_features = options.seconds_features;
+  const std::vector<double>& vertex_radii = options.vertex_radii;
+  const double radius = options.radius;
+  Feature_set<TriangleMesh> features = options.features;
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
   // is finer there already, and both together over-refine them)
+  auto t = now();
   std::vector<double> radii =
-      vertex_radii.empty() && choose_parameter(get_parameter(np, internal_np::feature_grading), true)
+      vertex_radii.empty() && options.feature_grading
         ? internal::feature_graded_radii(input, in_vpm, features, radius, result.number_of_graded_tips)
         : vertex_radii;
-  result.seconds_features = since(t);
+  result.seconds_features += since(t);
 
   // (a posteriori) the remesh is made again, finer where its result still cuts itself or keeps
   // triangles under 30 degrees (internal/regrading.h); the best one is kept
-  // (by default only for a uniform density and the default relaxer: an adaptive density is the
-  // user's choice of where to be finer, a user's relaxer may not aim at 30 degrees, and a user's
-  // sampler may not follow the finer radii)
-  const bool regrading_by_default = vertex_radii.empty() && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value &&
-                                    parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
-  const unsigned int regrading_attempts = choose_parameter(get_parameter(np, internal_np::regrading_attempts), regrading_by_default ? 6u : 0u);
+  const unsigned int regrading_attempts = options.regrading_attempts;
   const internal::Regrading_settings regrading;
-  const bool local_remakes = choose_parameter(get_parameter(np, internal_np::local_remakes), false);
+  const bool use_local_remakes = options.local_remakes;
   const internal::Local_remake_settings local_remake;
-  const bool use_local_remakes = local_remakes && parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value &&
-                                 parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value;
   std::optional<internal::Reference_crossings<TriangleMesh>> input_crossings;   // (found when first needed)
-  const Feature_set<TriangleMesh> detected_features = features;   // (the sampling drops crowded curves from its copy)
+  const Feature_set<TriangleMesh>& detected_features = options.features;   // (the sampling drops crowded curves from its copy)
   const Poisson_remesh_result first = result;
   TriangleMesh best;
   Poisson_remesh_result best_result;
   internal::Regrading_places<Point_3> best_places;
   internal::Regrading_places<Point_3> previous_places;   // (of the attempt before)
   bool output_is_best = true;
-  const unsigned int seed = choose_parameter(get_parameter(np, CGAL::internal_np::random_seed), 0u);
+  const unsigned int seed = options.seed;
   double seconds[3] = {0, 0, 0};   // sampling, tessellation, relaxation: of all attempts
   Relaxation_times seconds_by_step;
   unsigned int regraded = 0;
@@ -188,13 +242,13 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     // (the shares of the run, for CGAL's callback: sampling, tessellation, relaxation; each
     // remake spans the whole range again)
     progress.set_span(0.02, 0.3);
-    if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value) {
-      result.sampling = internal::with_geodesic_oracle(input, in_vpm, np, [&](const auto& oracle) {
+    if constexpr(default_sampler) {
+      result.sampling = with_oracle([&](const auto& oracle) {
         return internal::poisson_disk_sample<ConcurrencyTag>(input, in_vpm, features, radius, attempt_seed, std::back_inserter(samples), radii, &crowded, &progress, &oracle);
       });
     } else {   // the user's model of the Sampler concept
       const Feature_set<TriangleMesh>& fs = features;
-      result.sampling = internal::unwrap(get_parameter(np, internal_np::sampler))(input, in_vpm, fs, radius, static_cast<const std::vector<double>&>(radii),
+      result.sampling = (*user_sampler)(input, in_vpm, fs, radius, static_cast<const std::vector<double>&>(radii),
                                                                 attempt_seed, std::back_inserter(samples));
       result.sampling.number_of_samples = samples.size();
     }
@@ -223,7 +277,6 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
     auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
     // the default relaxer, or the projection onto the input's features it would give (a user's
     // relaxer): one of them is built
-    constexpr bool default_relaxer = parameters::is_default_parameter<NamedParameters, internal_np::relaxer_t>::value;
     std::optional<Lloyd_relaxer<TriangleMesh, K, ConcurrencyTag>> relaxer;
     std::optional<internal::Feature_projector<TriangleMesh, K>> projector;
     if constexpr(default_relaxer) relaxer.emplace(input, features);
@@ -261,21 +314,12 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       for(vertex_descriptor v : vertices(output)) {
         const int k = kind(v);
         if(k < 0) { put(kind_map, v, int(Sample_kind::surface)); continue; }
-        if(k != int(Sample_kind::corner) || is_tip(v)) continue;
-        std::size_t on_feature = 0;
-        for(auto h : CGAL::halfedges_around_target(v, output))
-          if(is_border(edge(h, output), output) || is_feature(edge(h, output))) ++on_feature;
-        if(on_feature == 0) put(kind_map, v, int(Sample_kind::surface));
+        if(k == int(Sample_kind::corner) && internal::is_loose_corner(v, output, is_tip, is_feature)) put(kind_map, v, int(Sample_kind::surface));
       }
     }
     auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
     auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
-    // (the operators' switches: Relaxation_settings' defaults unless given whole; the two named
-    // parameters below override their members)
-    Relaxation_settings settings = choose_parameter(get_parameter(np, internal_np::relaxation_settings), Relaxation_settings());
-    settings.iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), settings.iterations);
-    settings.fidelity.max_deviation = choose_parameter(get_parameter(np, internal_np::fidelity_tolerance), settings.fidelity.max_deviation);
-    if(!(settings.fidelity.max_deviation >= 0)) throw std::invalid_argument("poisson_remesh: fidelity_tolerance must be >= 0");
+    const Relaxation_settings& settings = options.settings;
     // the sampling density at each vertex, for the Eq. 6 weights (Eq. 1: ~ 1 / r^2 at each sample's
     // radius; 1 for a uniform density); a vertex the relaxer adds takes its neighbours' mean
     auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
@@ -307,7 +351,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       if(radii.empty()) result.relaxation = relaxer->relax(output, is_feature, is_fixed, settings, new_vertex);
       else result.relaxation = relaxer->relax(output, is_feature, is_fixed, settings, new_vertex, density);
     } else {   // the user's model of the Relaxer concept: the maps and the density
-      result.relaxation = internal::unwrap(get_parameter(np, internal_np::relaxer)).relax(
+      result.relaxation = user_relaxer->relax(
         input, in_vpm, output, boost::make_function_property_map<edge_descriptor, bool>(is_feature),
         boost::make_function_property_map<vertex_descriptor, bool>(is_fixed),
         boost::make_function_property_map<vertex_descriptor, double>(density), settings.iterations, new_vertex);
@@ -327,38 +371,35 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, TriangleMes
       best_places = places;
       if(!last && !remake_locally) { clear(best); CGAL::copy_face_graph(output, best); best_result = result; }
     }
-    // (compiled only where `local_remakes` is given: it instantiates the tessellation and the
-    // relaxation once more, for the patches)
-    if constexpr(default_relaxer && parameters::is_default_parameter<NamedParameters, internal_np::sampler_t>::value &&
-                 !parameters::is_default_parameter<NamedParameters, internal_np::local_remakes_t>::value) {
+    if constexpr(default_relaxer && default_sampler && LocalRemakes) {
       if(remake_locally && !last) {
         // the remakes redo the regions at fault alone (internal/local_remake.h), each on the best
         // output so far: a remake that does not make it better is taken back
         seconds[2] += since(t);
         internal::Local_remake_undo<TriangleMesh> undo;
-        for(unsigned int k = 1;; ++k) {
-          t = now();
-          internal::regrade_radii(input, in_vpm, radius, best_places.places, radii, regrading);
-          ++regraded;
-          internal::Local_remake_statistics remake;
-          const bool changed = internal::with_geodesic_oracle(input, in_vpm, np, [&](const auto& oracle) {
+        t = now();
+        with_oracle([&](const auto& oracle) {   // (one oracle for all the remakes)
+          for(unsigned int k = 1;; ++k) {
+            internal::regrade_radii(input, in_vpm, radius, best_places.places, radii, regrading);
+            ++regraded;
+            internal::Local_remake_statistics remake;
             // (around the triangles at fault at a fixed vertex too: drawn anew, not finer)
             std::vector<Point_3> around = best_places.places;
             around.insert(around.end(), best_places.fixed_places.begin(), best_places.fixed_places.end());
-            return internal::remake_regions(input, in_vpm, oracle, *relaxer, settings, output, kind_map, is_feature, is_tip, around,
-                                            radius, radii, seed + regrading.seed_step * k, local_remake, remake, undo);
-          });
-          bool stop = remake.region_vertices == 0 || k >= regrading_attempts;
-          if(changed) {
-            const auto current = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
-            if(current.better_than(best_places)) best_places = current;
-            else internal::undo_remake(output, kind_map, undo);
-            internal::collect_garbage(output);
-            stop = stop || !best_places.wanted() || double(num_vertices(output)) > regrading.max_growth * double(first_count);
+            const bool changed = internal::remake_regions(input, in_vpm, oracle, *relaxer, settings, output, kind_map, is_feature, is_tip, around,
+                                                          radius, radii, seed + regrading.seed_step * k, local_remake, remake, undo);
+            bool stop = remake.region_vertices == 0 || k >= regrading_attempts;
+            if(changed) {
+              const auto current = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+              if(current.better_than(best_places)) best_places = current;
+              else internal::undo_remake(output, kind_map, undo);
+              internal::collect_garbage(output);
+              stop = stop || !best_places.wanted() || double(num_vertices(output)) > regrading.max_growth * double(first_count);
+            }
+            if(stop) break;
           }
-          seconds[2] += since(t);
-          if(stop) break;
-        }
+        });
+        seconds[2] += since(t);
         output_is_best = true;
         break;
       }
@@ -453,8 +494,19 @@ Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
   // then sees the surface it describes), an output of another type, or faces to repair.
   constexpr bool same_type = std::is_same<InputMesh, OutputMesh>::value;
   constexpr bool own_points = parameters::is_default_parameter<NamedParameters, CGAL::internal_np::vertex_point_t>::value;
-  if constexpr(same_type && own_points)
-    if(degenerate == 0) return internal::poisson_remesh_impl<ConcurrencyTag>(input, output, np);
+  // the user's models (copies, as CGAL keeps them, or the objects of a std::ref), else none
+  const auto sampler = get_parameter(np, internal_np::sampler);
+  const auto relaxer = get_parameter(np, internal_np::relaxer);
+  const auto oracle = get_parameter(np, internal_np::geodesic_oracle);
+  constexpr bool local_remakes = !parameters::is_default_parameter<NamedParameters, internal_np::local_remakes_t>::value;
+  internal::Progress_reporter progress(np);
+  if constexpr(same_type && own_points) {
+    if(degenerate == 0) {
+      const auto options = internal::read_remesh_options(input, in_vpm, np, progress);
+      return internal::poisson_remesh_impl<ConcurrencyTag, local_remakes>(input, in_vpm, output, options, progress, internal::model_pointer(sampler),
+                                                                          internal::model_pointer(relaxer), internal::model_pointer(oracle));
+    }
+  }
   // (a user's geodesic oracle is built on the input itself: it cannot follow a copy)
   if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::geodesic_oracle_t>::value) {
     throw std::invalid_argument("poisson_remesh: a geodesic_oracle works on the input itself: give no vertex_point_map "
@@ -471,8 +523,11 @@ Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
       split = repaired.split_vertices;
       internal::collect_garbage(work);
     }
+    const auto work_vpm = get_const_property_map(CGAL::vertex_point, work);
+    const auto options = internal::read_remesh_options(work, work_vpm, np.vertex_point_map(work_vpm), progress);
     Poisson_remesh_result result =
-      internal::poisson_remesh_impl<ConcurrencyTag>(work, output, np.vertex_point_map(get_const_property_map(CGAL::vertex_point, work)));
+      internal::poisson_remesh_impl<ConcurrencyTag, local_remakes>(work, work_vpm, output, options, progress, internal::model_pointer(sampler),
+                                                                   internal::model_pointer(relaxer), internal::model_pointer(oracle));
     result.number_of_repaired_faces = degenerate;
     result.number_of_split_vertices = split;
     return result;

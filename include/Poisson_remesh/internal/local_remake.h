@@ -53,7 +53,6 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -203,11 +202,7 @@ bool remake_regions(const TriangleMesh& input, InputVPM in_vpm, const Oracle& or
   const Near_points<Point_3> near_place(places, kept_d);
   auto free_vertex = [&](vertex_descriptor v) {
     const int k = get(kind_map, v);
-    if(k < 0 || k == surface) return true;
-    if(k != corner || is_tip(v)) return false;
-    for(halfedge_descriptor h : CGAL::halfedges_around_target(v, output))
-      if(is_border(edge(h, output), output) || is_feature(edge(h, output))) return false;
-    return true;
+    return k < 0 || k == surface || (k == corner && is_loose_corner(v, output, is_tip, is_feature));
   };
   std::vector<char> in_region(vertex_index_bound(output), 0), kept_near(vertex_index_bound(output), 0);
   std::vector<vertex_descriptor> region;

@@ -170,6 +170,17 @@ regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixe
 }
 
 // "Within d of one of the points" for a point set (cells of side `cell`, d <= cell).
+// whether corner v of m need not stay fixed in a remake: it lies on no feature or border edge
+// (its curves were dropped or left unsampled) and is no pointed tip
+template <class Mesh, class IsTip, class IsFeature>
+bool is_loose_corner(typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m, IsTip is_tip, IsFeature is_feature)
+{
+  if(is_tip(v)) return false;
+  for(auto h : CGAL::halfedges_around_target(v, m))
+    if(is_border(edge(h, m), m) || is_feature(edge(h, m))) return false;
+  return true;
+}
+
 template <class Point_3>
 class Near_points
 {
