@@ -15,6 +15,7 @@
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/Postprocessing/internal/face_box_grid.h>
+#include <Poisson_remesh/internal/memory_free_order.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <algorithm>
@@ -94,7 +95,10 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   for(const auto& fp : pairs)
     for(face_descriptor f : {fp.first, fp.second})
       for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) vs.push_back(x);
-  std::sort(vs.begin(), vs.end());
+  // (the vertices, edges and shared vertices below are visited in an order that does not depend on
+  // memory: each change depends on those before it)
+  const Poisson_remesh::internal::Memory_free_order<Mesh> order(m);
+  std::sort(vs.begin(), vs.end(), order);
   vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
   // moves of the free vertices
   for(vertex_descriptor v : vs) {
@@ -152,7 +156,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   for(const auto& fp : pairs)
     for(face_descriptor f : {fp.first, fp.second})
       for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m)) es.push_back(edge(h, m));
-  std::sort(es.begin(), es.end());
+  std::sort(es.begin(), es.end(), order);
   es.erase(std::unique(es.begin(), es.end()), es.end());
   for(auto e : es) {
     if(is_feature(e) || is_border(e, m)) continue;
@@ -190,7 +194,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
       for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(fp.first, m), m))
         for(vertex_descriptor y : CGAL::vertices_around_face(halfedge(fp.second, m), m))
           if(x == y) shared.push_back(x);
-    std::sort(shared.begin(), shared.end());
+    std::sort(shared.begin(), shared.end(), order);
     shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
     const double collapse_floor = s.collapse_min_angle * CGAL_PI / 180;
     std::set<vertex_descriptor> gone;

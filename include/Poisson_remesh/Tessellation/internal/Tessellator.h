@@ -18,6 +18,7 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/properties.h>
+#include <Poisson_remesh/internal/memory_free_order.h>
 
 #include <algorithm>
 #include <array>
@@ -514,7 +515,8 @@ public:
           diagonals.push_back({sides[k].polygon[x], sides[k].polygon[y]});
         }
     }
-    std::sort(diagonals.begin(), diagonals.end());
+    // (split in an order that does not depend on memory: it decides the order of the new faces)
+    std::sort(diagonals.begin(), diagonals.end(), Poisson_remesh::internal::Memory_free_order<TriangleMesh, VPM>(tm, vpm));
     diagonals.erase(std::unique(diagonals.begin(), diagonals.end()), diagonals.end());
 
     // apply: merge the star into one face, then split it along the new edges
@@ -682,7 +684,8 @@ public:
         partner.push_back(pr);
         partner.push_back({pr.second, pr.first});
       }
-      std::sort(involved.begin(), involved.end());
+      // (visited in an order that does not depend on memory: each flip depends on those before it)
+      std::sort(involved.begin(), involved.end(), Poisson_remesh::internal::Memory_free_order<TriangleMesh, VPM>(tm, vpm));
       involved.erase(std::unique(involved.begin(), involved.end()), involved.end());
       std::sort(partner.begin(), partner.end());
       auto partners_of = [&](face_descriptor f, std::vector<face_descriptor>& out) {
