@@ -166,26 +166,38 @@ void drop_feature_curves(Feature_set<TriangleMesh>& fs, std::vector<std::size_t>
   }
 }
 
+// A named parameter left at its default (`sampler`, `relaxer`, `geodesic_oracle`): the package's
+// own model runs. model_pointer(v), v = get_parameter(np, tag) kept alive: the user's model (the
+// object itself when CGAL keeps it as a std::reference_wrapper: one it cannot copy, a std::ref), or
+// a null Default_model pointer.
+struct Default_model {};
+inline const Default_model* model_pointer(const CGAL::internal_np::Param_not_found&) { return nullptr; }
+template <class T> const T* model_pointer(const T& t) { return &t; }
+template <class T> T* model_pointer(const std::reference_wrapper<T>& t) { return &t.get(); }
+
+// f(oracle) with the user's geodesic oracle (a model of GeodesicOracle built on tm), else with an
+// Exact_geodesic_oracle on tm
+template <class TriangleMesh, class VPM, class Oracle, class F>
+decltype(auto) with_geodesic_oracle(const TriangleMesh& tm, VPM vpm, const Oracle* oracle, F f)
+{
+  if constexpr(std::is_same<Oracle, Default_model>::value)
+    return f(Exact_geodesic_oracle<TriangleMesh, VPM>(tm, vpm));
+  else
+    return f(*oracle);
+}
+
+// the same with the oracle of the named parameters (`geodesic_oracle`)
+template <class TriangleMesh, class VPM, class NamedParameters, class F>
+decltype(auto) with_geodesic_oracle(const TriangleMesh& tm, VPM vpm, const NamedParameters& np, F f)
+{
+  const auto oracle = parameters::get_parameter(np, internal_np::geodesic_oracle);
+  return with_geodesic_oracle(tm, vpm, model_pointer(oracle), f);
+}
+
 // poisson_disk_sample() with the features already detected (the remesher shares them with the
 // tessellation)
 // (vertex_radii not empty: adaptive density, the disk radius at each vertex by vertex index;
 // `radius` is then their median)
-// A named parameter's value: CGAL keeps an object it cannot copy (a relaxer with its trees) as a
-// std::reference_wrapper
-template <class T> const T& unwrap(const T& t) { return t; }
-template <class T> T& unwrap(const std::reference_wrapper<T>& t) { return t.get(); }
-
-// The geodesic oracle the named parameters give (`geodesic_oracle`: a model of GeodesicOracle
-// built on tm, copied), else an Exact_geodesic_oracle; f(oracle) is called with it.
-template <class TriangleMesh, class VPM, class NamedParameters, class F>
-decltype(auto) with_geodesic_oracle(const TriangleMesh& tm, VPM vpm, const NamedParameters& np, F f)
-{
-  if constexpr(parameters::is_default_parameter<NamedParameters, internal_np::geodesic_oracle_t>::value)
-    return f(Exact_geodesic_oracle<TriangleMesh, VPM>(tm, vpm));
-  else
-    return f(unwrap(parameters::get_parameter(np, internal_np::geodesic_oracle)));
-}
-
 // (ConcurrencyTag: with CGAL::Parallel_tag and the default oracle, the surface fills by slabs in
 // parallel, Sampling/internal/slab_sampling.h, when it is long enough to cut)
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class VPM, class OutputIterator,

@@ -110,13 +110,6 @@ private:
   Face_tree faces_;
 };
 
-// A named parameter left at its default (`sampler`, `relaxer`, `geodesic_oracle`): the package's
-// own model runs.
-struct Default_model {};
-inline const Default_model* model_pointer(const CGAL::internal_np::Param_not_found&) { return nullptr; }
-template <class T> const T* model_pointer(const T& t) { return &t; }
-template <class T> T* model_pointer(const std::reference_wrapper<T>& t) { return &t.get(); }
-
 // What the stages take from the named parameters, read once by read_remesh_options(): the
 // pipeline below is compiled once per mesh type and choice of models, not once per combination
 // of named parameters (each of which is a type of its own).
@@ -183,26 +176,23 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
   typedef typename GT::edge_descriptor edge_descriptor;
   constexpr bool default_sampler = std::is_same<std::remove_const_t<Sampler>, Default_model>::value;
   constexpr bool default_relaxer = std::is_same<std::remove_const_t<Relaxer>, Default_model>::value;
-  constexpr bool default_oracle = std::is_same<std::remove_const_t<Oracle>, Default_model>::value;
   auto now = [] { return std::chrono::steady_clock::now(); };
   auto since = [&](std::chrono::steady_clock::time_point t) { return std::chrono::duration<double>(now() - t).count(); };
   // the geodesic oracle of the default sampler: the user's, or an exact one on the input
-  auto with_oracle = [&](auto f) -> decltype(auto) {
-    if constexpr(default_oracle) return f(Exact_geodesic_oracle<TriangleMesh, VPM>(input, in_vpm));
-    else return f(*user_oracle);
-  };
+  auto with_oracle = [&](auto f) -> decltype(auto) { return internal::with_geodesic_oracle(input, in_vpm, user_oracle, f); };
 
   Poisson_remesh_result result;
   result.seconds_features = options.seconds_features;
   const std::vector<double>& vertex_radii = options.vertex_radii;
   const double radius = options.radius;
-  Feature_set<TriangleMesh> features = options.features;
+  const Feature_set<TriangleMesh>& detected_features = options.features;   // (the sampling drops crowded curves from its copy)
+  Feature_set<TriangleMesh> features;   // (the attempt's)
   // uniform density: finer around pointed tips (internal/feature_grading.h; an adaptive density
   // is finer there already, and both together over-refine them)
   auto t = now();
   std::vector<double> radii =
       vertex_radii.empty() && options.feature_grading
-        ? internal::feature_graded_radii(input, in_vpm, features, radius, result.number_of_graded_tips)
+        ? internal::feature_graded_radii(input, in_vpm, detected_features, radius, result.number_of_graded_tips)
         : vertex_radii;
   result.seconds_features += since(t);
 
@@ -213,7 +203,6 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
   const bool use_local_remakes = options.local_remakes;
   const internal::Local_remake_settings local_remake;
   std::optional<internal::Reference_crossings<TriangleMesh>> input_crossings;   // (found when first needed)
-  const Feature_set<TriangleMesh>& detected_features = options.features;   // (the sampling drops crowded curves from its copy)
   const Poisson_remesh_result first = result;
   TriangleMesh best;
   Poisson_remesh_result best_result;
@@ -227,8 +216,8 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
   std::size_t first_count = 0;   // (the first attempt's vertices)
   // the pointed tips (the last corners of the feature set)
   std::vector<Point_3> tips;
-  for(std::size_t i = features.corners.size() - features.number_of_tips; i < features.corners.size(); ++i)
-    tips.push_back(get(in_vpm, features.corners[i]));
+  for(std::size_t i = detected_features.corners.size() - detected_features.number_of_tips; i < detected_features.corners.size(); ++i)
+    tips.push_back(get(in_vpm, detected_features.corners[i]));
   std::sort(tips.begin(), tips.end());
   for(unsigned int attempt = 0;; ++attempt) {
     result = first;

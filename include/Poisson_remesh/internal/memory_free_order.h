@@ -4,8 +4,8 @@
 // memory, for the steps that visit elements in a sorted order (each change there depends on those
 // before it). A Surface_mesh's descriptors are indices: they are compared as they are, and its
 // results do not change. Other meshes' descriptors (a Polyhedron_3's) are addresses, which
-// address-space randomization moves from run to run: sorted by them, the same seed would give
-// another output in each run. Their vertices are compared by their points, lexicographically (by
+// address-space randomization moves from run to run: sorted by them, the output would change
+// between runs of the same input and settings. Their vertices are compared by their points, lexicographically (by
 // address only where two points coincide), their edges and faces by their vertices in that order.
 
 #ifndef POISSON_REMESH_INTERNAL_MEMORY_FREE_ORDER_H
@@ -51,24 +51,8 @@ public:
       return a < b;
     }
   }
-  bool operator()(edge_descriptor a, edge_descriptor b) const
-  {
-    if constexpr(indices) {
-      return a < b;
-    } else {
-      const auto ka = ends(a), kb = ends(b);
-      return lexicographic(ka.data(), kb.data(), 2);
-    }
-  }
-  bool operator()(face_descriptor a, face_descriptor b) const
-  {
-    if constexpr(indices) {
-      return a < b;
-    } else {
-      const auto ka = corners(a), kb = corners(b);
-      return lexicographic(ka.data(), kb.data(), 3);
-    }
-  }
+  bool operator()(edge_descriptor a, edge_descriptor b) const { return by_vertices(a, b); }
+  bool operator()(face_descriptor a, face_descriptor b) const { return by_vertices(a, b); }
   template <class T>
   bool operator()(const std::pair<T, T>& a, const std::pair<T, T>& b) const
   {
@@ -78,21 +62,24 @@ public:
   }
 
 private:
-  bool lexicographic(const vertex_descriptor* a, const vertex_descriptor* b, int n) const
+  // an edge or a face, by its vertices in the order above
+  template <class D>
+  bool by_vertices(D a, D b) const
   {
-    for(int i = 0; i < n; ++i) {
-      if((*this)(a[i], b[i])) return true;
-      if((*this)(b[i], a[i])) return false;
+    if constexpr(indices) {
+      return a < b;
+    } else {
+      const auto ka = vertices_of(a), kb = vertices_of(b);
+      return std::lexicographical_compare(ka.begin(), ka.end(), kb.begin(), kb.end(), *this);
     }
-    return false;
   }
-  std::array<vertex_descriptor, 2> ends(edge_descriptor e) const
+  std::array<vertex_descriptor, 2> vertices_of(edge_descriptor e) const
   {
     std::array<vertex_descriptor, 2> k = {{source(halfedge(e, m_), m_), target(halfedge(e, m_), m_)}};
     if((*this)(k[1], k[0])) std::swap(k[0], k[1]);
     return k;
   }
-  std::array<vertex_descriptor, 3> corners(face_descriptor f) const
+  std::array<vertex_descriptor, 3> vertices_of(face_descriptor f) const
   {
     std::array<vertex_descriptor, 3> k;
     int i = 0;
