@@ -123,10 +123,18 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     });
     return nearest;
   };
+  // (the mesh's vertices are on the input, and the distance is 1-Lipschitz: a centroid or
+  // midpoint within the tolerance of one of its vertices, with a margin for the vertices' own
+  // rounding, is not queried)
+  const double near_vertex = 0.999 * tol;
   std::vector<std::pair<Point_3, Point_3>> points;   // (the point, and a vertex of the mesh near it)
   for(face_descriptor f : faces(m)) {
     const auto h = halfedge(f, m);
-    points.push_back({CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))), get(vpm, source(h, m))});
+    const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
+    const Point_3 x = CGAL::centroid(a, b, c);
+    const double d2 = std::min({CGAL::to_double(CGAL::squared_distance(x, a)), CGAL::to_double(CGAL::squared_distance(x, b)),
+                                CGAL::to_double(CGAL::squared_distance(x, c))});
+    if(d2 > near_vertex * near_vertex) points.push_back({x, a});
   }
   for(const auto& [d2, p] : nearest_on_input(points))
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)
@@ -139,8 +147,10 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   for(auto e : edges(m)) {
     const halfedge_descriptor h = halfedge(e, m);
     if(is_border_edge(h, m) || is_feature(e)) continue;
+    const Point_3 x = CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m)));
+    if(CGAL::to_double(CGAL::squared_distance(x, get(vpm, source(h, m)))) <= near_vertex * near_vertex) continue;
     hs.push_back(h);
-    points.push_back({CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m))), get(vpm, source(h, m))});
+    points.push_back({x, get(vpm, source(h, m))});
   }
   const auto nearest = nearest_on_input(points);
   for(std::size_t i = 0; i < hs.size(); ++i)

@@ -10,6 +10,7 @@
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/internal/parallel.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -140,19 +141,22 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       t.ln = std::sqrt(CGAL::to_double(t.n.squared_length()));
       ring.push_back(t);
     }
-    auto smallest_angles_around = [&](const Point_3& at) -> std::pair<double, double> {
+    // (a triangle under `cut` ends the count with -1: the trial point it belongs to cannot win)
+    auto smallest_angles_around = [&](const Point_3& at, double cut) -> std::pair<double, double> {
       double worst = CGAL_PI, sum = 0;
       for(const Ring_triangle& t : ring) {
         const double x = ctx.star_triangle_angle(t.a, at, t.b, t.n, t.ln, t.sa, t.sb);
-        if(x < 0) return {-1, -1};
+        if(x < 0 || x < cut) return {-1, -1};
         worst = std::min(worst, x);
         sum += x;
       }
       return {worst, sum};
     };
-    const double floor = smallest_angles_around(p).first;
-    auto objective = [&](const Point_3& q) {
-      const auto [smallest, sum] = smallest_angles_around(q);
+    const double floor = smallest_angles_around(p, 0).first;
+    // the goal at q; `beaten`: a value q must exceed to be taken (a smallest angle at or under it
+    // ends the count early; with Angle_goal::sum_of_smallest one under the floor does)
+    auto objective = [&](const Point_3& q, double beaten = -1) {
+      const auto [smallest, sum] = smallest_angles_around(q, smoothing ? floor : std::nextafter(beaten, 2 * CGAL_PI));
       if(!smoothing || smallest < 0) return smallest;
       return smallest < floor ? -1.0 : sum;
     };
@@ -202,7 +206,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
         if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
         if(pin != nullptr && CGAL::to_double(CGAL::squared_distance(q, *pin)) > pin_reach * pin_reach) continue;
-        const double a = objective(q);
+        const double a = objective(q, best_here + 1e-9);
         if(a > best_here + 1e-9) { best_here = a; best_q = q; }
       }
       if(best_here > best + 1e-6) { best = best_here; p = best_q; }
@@ -254,12 +258,17 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     std::sort(from.begin(), from.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     std::vector<vertex_descriptor> movers;
     for(const auto& x : from) movers.push_back(x.first);
-    const auto changed = Poisson_remesh::internal::faces_around(m, movers);
+    // (the first round checks the faces around every moved vertex; a later one those around the
+    // vertices the round before took back: a new crossing of the faces that did not change since
+    // was found then, and each of its moved vertices taken back)
+    auto changed = Poisson_remesh::internal::faces_around(m, movers);
+    std::vector<vertex_descriptor> taken_back;
     for(int round = 0; round < 8; ++round) {
       std::size_t back = 0;
+      taken_back.clear();
       const std::size_t crossing = ctx.template for_vertices_of_new_intersections_after_moves<ConcurrencyTag>(m, from, changed, [&](vertex_descriptor x) {
         auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
-        if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; }
+        if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; taken_back.push_back(x); }
       });
       // (a mesh that cuts itself everywhere -- folded input -- is left as it was: not worth the checks)
       if(round == 0 && crossing > num_faces(m)) {
@@ -270,6 +279,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       if(back == 0) break;
       moved -= std::min(moved, back);
       stats.refused_moves += back;
+      changed = Poisson_remesh::internal::faces_around(m, taken_back);
     }
   }
   stats.angle_moves += moved;
