@@ -165,8 +165,8 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
     const double k1 = CGAL::to_double(form.principal_curvatures(0)), k2 = CGAL::to_double(form.principal_curvatures(1));
     if(std::isfinite(k1) && std::isfinite(k2)) kappa[get(vim, v)] = std::sqrt(0.5 * (k1 * k1 + k2 * k2));
   }
-  // a jet smooths over rims and creases narrower than the 2-ring (ears, fins, tails of coarse
-  // meshes), where a remesh loses most: the normal curvature across each edge (the angle between
+  // a jet smooths over rims and creases narrower than the 2-ring (thin protrusions of a coarse
+  // input), where a remesh loses most: the normal curvature across each edge (the angle between
   // the normals of its faces over the distance between their centroids) is taken as well, and the
   // larger of the two used
   {

@@ -224,7 +224,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   };
   // one taken back splits an edge of that triangle instead, the nearest edge first (not a
   // feature edge: it would lose its feature), turning a triangle by 75 degrees at most: it
-  // follows the input there (a horn thinner than the spacing turns that much)
+  // follows the input there (a protrusion thinner than the spacing turns that much)
   for(const auto& [p, g] : retry) {
     std::vector<std::pair<double, halfedge_descriptor>> order;
     for(auto x : CGAL::halfedges_around_face(g, m)) {
