@@ -307,12 +307,17 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
       }
     }
     auto is_fixed = [&](vertex_descriptor v) { const int k = kind(v); return k < 0 || k == int(Sample_kind::corner); };
-    auto new_vertex = [&](vertex_descriptor v, bool on_feature) { put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface)); };
     const Relaxation_settings& settings = options.settings;
     // the sampling density at each vertex, for the Eq. 6 weights (Eq. 1: ~ 1 / r^2 at each sample's
     // radius; 1 for a uniform density); a vertex the relaxer adds takes its neighbours' mean
     auto density_map = get(CGAL::dynamic_vertex_property_t<double>(), output);
     for(vertex_descriptor v : vertices(output)) put(density_map, v, 0.0);
+    // a vertex the relaxer adds may take the descriptor of one it removed (a Surface_mesh recycles
+    // indices, a Polyhedron_3 memory): what the maps held for that one is forgotten
+    auto new_vertex = [&](vertex_descriptor v, bool on_feature) {
+      put(kind_map, v, int(on_feature ? Sample_kind::feature : Sample_kind::surface));
+      put(density_map, v, 0.0);
+    };
     for(const auto& v : tessellation.vertices)
       if(v.sample != tessellation.no_sample)
         put(density_map, v.vertex, radii.empty() ? 1.0 : 1.0 / (samples[v.sample].radius * samples[v.sample].radius));

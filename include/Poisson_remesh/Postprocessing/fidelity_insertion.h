@@ -14,6 +14,7 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/memory_free_order.h>
 #include <Poisson_remesh/internal/parallel.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -182,13 +183,17 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   ctx.for_vertices_of_new_intersections(m, before, Poisson_remesh::internal::faces_around(m, mine), [&](vertex_descriptor x) {
     if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
   });
-  std::sort(undo.begin(), undo.end());
+  // (the retries below split edges one after the other, each seeing the splits before it: they
+  // run in an order that does not depend on where the vertices lie in memory)
+  const Poisson_remesh::internal::Memory_free_order<Mesh> order(m);
+  std::sort(undo.begin(), undo.end(), order);
   undo.erase(std::unique(undo.begin(), undo.end()), undo.end());
   std::vector<std::pair<Point_3, typename GT::halfedge_descriptor>> retry;   // (a halfedge of the triangle it was in)
   for(vertex_descriptor v : undo) {
     const Point_3 p = get(vpm, v);
     retry.push_back({p, CGAL::Euler::remove_center_vertex(halfedge(v, m), m)});
   }
+  std::sort(undo.begin(), undo.end());   // (removed: compared as descriptors alone from here)
   for(vertex_descriptor v : mine)
     if(!std::binary_search(undo.begin(), undo.end(), v)) {
       new_vertex(v, false);

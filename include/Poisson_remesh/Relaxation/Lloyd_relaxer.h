@@ -177,6 +177,15 @@ public:
       if(!std::binary_search(pinned.begin(), pinned.end(), v)) return nullptr;
       return &anchors.emplace(v, get(get(CGAL::vertex_point, mesh), v)).first->second;
     };
+    // a vertex added may take the descriptor of one removed before it (a Surface_mesh recycles
+    // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no anchor, until the step
+    // that adds it says so
+    auto added_vertex = [&](vertex_descriptor v, bool on_feature) {
+      const auto it = std::lower_bound(pinned.begin(), pinned.end(), v);
+      if(it != pinned.end() && *it == v) pinned.erase(it);
+      anchors.erase(v);
+      new_vertex(v, on_feature);
+    };
     const double tolerance = s.fidelity.max_deviation, optimized = s.angle_optimization.optimized_angle;
     const bool keep_regularity = s.regularity.keep_regularity;
 
@@ -201,7 +210,7 @@ public:
     // the operators beyond the paper, each a round of its own
     auto fidelity = [&]() -> std::size_t {
       if constexpr(may_add)
-        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points<ConcurrencyTag>(ctx, mesh, is_feature, new_vertex, s.fidelity, stats, pinned); }) : 0;
+        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points<ConcurrencyTag>(ctx, mesh, is_feature, added_vertex, s.fidelity, stats, pinned); }) : 0;
       else return 0;
     };
     auto optimize_angles = [&] {
@@ -213,7 +222,7 @@ public:
     auto refine = [&] {
       if constexpr(may_add)
         for(unsigned int round = 0; round < s.refinement.rounds; ++round) {
-          if(clock.timed(T.refinement, [&] { return P::refine_sharp_triangles(ctx, mesh, is_feature, is_corner, new_vertex, s.refinement, s.sliver_angle, tolerance, stats, pinned); }) == 0) break;
+          if(clock.timed(T.refinement, [&] { return P::refine_sharp_triangles(ctx, mesh, is_feature, is_corner, added_vertex, s.refinement, s.sliver_angle, tolerance, stats, pinned); }) == 0) break;
           final_delaunay(keep_regularity);
           optimize_angles();
         }
