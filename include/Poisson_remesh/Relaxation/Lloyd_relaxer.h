@@ -180,9 +180,9 @@ public:
     // a vertex added may take the descriptor of one removed before it (a Surface_mesh recycles
     // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no anchor, until the step
     // that adds it says so
+    // (a search of the whole list: the fidelity insertions append to it before they sort it)
     auto added_vertex = [&](vertex_descriptor v, bool on_feature) {
-      const auto it = std::lower_bound(pinned.begin(), pinned.end(), v);
-      if(it != pinned.end() && *it == v) pinned.erase(it);
+      pinned.erase(std::remove(pinned.begin(), pinned.end(), v), pinned.end());
       anchors.erase(v);
       new_vertex(v, on_feature);
     };
@@ -263,7 +263,7 @@ public:
     report("optimization", 3, optimization_steps);
     for(unsigned int it = 0; it < s.regularity.rounds; ++it) {
       if(clock.timed(T.regularity, [&] { return P::regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, stats); }) == 0) break;
-      smooth();
+      if(s.angle_smoothing.rounds > 0) smooth();   // (rounds = 0 switches the smoothing off here too)
     }
     report("optimization", 4, optimization_steps);
     optimize_angles();
