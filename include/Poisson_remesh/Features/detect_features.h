@@ -10,7 +10,7 @@
 //      creases, and are dropped, repeatedly; so are closed feature loops shorter than it. The
 //      sampler and the remesher set that length from the sampling radius (a crease shorter than
 //      two sample spacings cannot be represented by the output's edges anyway), which removes
-//      the hundreds of false "features" a 60 degree threshold finds on coarse organic models;
+//      the hundreds of false "features" a 60 degree threshold finds on coarsely meshed curved surfaces;
 //   3. mesh borders are always feature curves (whatever the policy: the remesh keeps them);
 //   4. corners: vertices where the feature graph branches or ends (feature degree != 2), and
 //      vertices of degree 2 where the curve turns by more than `corner_angle`;

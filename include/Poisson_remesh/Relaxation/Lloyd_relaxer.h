@@ -179,8 +179,8 @@ public:
     };
     // a vertex added may take the descriptor of one removed before it (a Surface_mesh recycles
     // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no anchor, until the step
-    // that adds it says so
-    // (a search of the whole list: the fidelity insertions append to it before they sort it)
+    // that adds it says so (the whole list is searched: the fidelity insertions append to it
+    // before they sort it)
     auto added_vertex = [&](vertex_descriptor v, bool on_feature) {
       pinned.erase(std::remove(pinned.begin(), pinned.end(), v), pinned.end());
       anchors.erase(v);
