@@ -9,6 +9,7 @@
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
+#include <Poisson_remesh/internal/near_points.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
@@ -472,6 +474,33 @@ TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[opera
   }
   CHECK(!reference.empty());
   CHECK(local == reference);
+}
+
+// The fidelity insertions skip the distance queries of points within the tolerance of a point of
+// the mesh (or of the input): found in a grid of cells as large as the tolerance
+// (internal/near_points.h), judged against a scan of every point.
+TEST_CASE("the point grid finds a point within a distance exactly when there is one", "[operators][fidelity]")
+{
+  std::mt19937 draw(7);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  std::vector<Point> points;
+  for(int i = 0; i < 400; ++i) points.push_back(Point(coordinate(draw), coordinate(draw), 0.1 * coordinate(draw)));
+  const double cell = 0.08;
+  const PR::internal::Near_points<Point> grid(points, cell);
+  std::size_t near = 0, far = 0;
+  for(int i = 0; i < 4000; ++i) {
+    const Point q(1.1 * coordinate(draw), 1.1 * coordinate(draw), 0.2 * coordinate(draw));
+    for(double d : {cell, 0.5 * cell, 0.1 * cell}) {
+      bool any = false;
+      for(const Point& p : points) any = any || CGAL::squared_distance(p, q) <= d * d;
+      CHECK(grid.within(q, d) == any);
+      (any ? near : far) += 1;
+    }
+  }
+  // (both answers were met; a point of the grid is within any distance of itself)
+  CHECK(near > 1000);
+  CHECK(far > 1000);
+  CHECK(grid.within(points[0], 0));
 }
 
 TEST_CASE("the untangling's face box grid finds every face whose box meets a box, after moves too", "[operators][intersections]")

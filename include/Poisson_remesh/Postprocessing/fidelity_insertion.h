@@ -15,6 +15,7 @@
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/internal/memory_free_order.h>
+#include <Poisson_remesh/internal/near_points.h>
 #include <Poisson_remesh/internal/parallel.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -71,9 +72,22 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::vector<std::pair<double, Point_3>> far;
   std::vector<Point_3> queries;
   std::vector<double> d2s;
-  auto distances = [&] {   // (the squared distance from each query point to the mesh)
+  // (a point within the tolerance of a vertex, edge midpoint or triangle centroid of the mesh --
+  // points of the mesh -- is near it: its squared distance is given as tol^2, a bound, and the
+  // tree is not asked; the far points, and their distances, are the same)
+  std::vector<Point_3> mesh_points;
+  for(auto v : vertices(m)) mesh_points.push_back(get(vpm, v));
+  for(auto e : edges(m)) mesh_points.push_back(CGAL::midpoint(get(vpm, source(e, m)), get(vpm, target(e, m))));
+  for(face_descriptor f : faces(m)) {
+    const auto h = halfedge(f, m);
+    mesh_points.push_back(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))));
+  }
+  const Poisson_remesh::internal::Near_points<Point_3> near_mesh(mesh_points, tol);
+  auto distances = [&] {   // (the squared distance from each query point to the mesh, or tol^2 when near)
     d2s.assign(queries.size(), 0);
-    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) { d2s[i] = CGAL::to_double(tree.squared_distance(queries[i])); });
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) {
+      d2s[i] = near_mesh.within(queries[i], tol) ? tol * tol : CGAL::to_double(tree.squared_distance(queries[i]));
+    });
   };
   auto take_far = [&] {
     for(std::size_t i = 0; i < queries.size(); ++i)
@@ -83,11 +97,13 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // of its vertices is not queried)
   auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), ctx.input());
   std::vector<typename boost::graph_traits<InputMesh>::vertex_descriptor> queried;
+  std::vector<Point_3> input_points;   // (all of them, for the other way below)
   queries.clear();
   for(auto v : vertices(ctx.input())) {
     put(vertex_distance, v, std::numeric_limits<double>::infinity());
     if(halfedge(v, ctx.input()) != boost::graph_traits<InputMesh>::null_halfedge()) { queried.push_back(v); queries.push_back(get(in_vpm, v)); }
   }
+  input_points = queries;
   distances();
   take_far();
   for(std::size_t i = 0; i < queried.size(); ++i) put(vertex_distance, queried[i], std::sqrt(d2s[i]));
@@ -98,6 +114,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   for(auto e : edges(ctx.input())) {
     const auto a = source(e, ctx.input()), b = target(e, ctx.input());
     const Point_3 x = CGAL::midpoint(get(in_vpm, a), get(in_vpm, b));
+    input_points.push_back(x);
     if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) queries.push_back(x);
   }
   distances();
@@ -107,6 +124,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     const auto h = halfedge(f, ctx.input());
     const auto a = source(h, ctx.input()), b = target(h, ctx.input()), c = target(next(h, ctx.input()), ctx.input());
     const Point_3 x = CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c));
+    input_points.push_back(x);
     if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) queries.push_back(x);
   }
   distances();
@@ -116,9 +134,14 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // (for each (c, hint) of `points`, the input point nearest c and its squared distance to c,
   // in the order of `points`, in parallel with CGAL::Parallel_tag; the search starts from `hint`,
   // a vertex of the mesh: on the input, and near c)
+  // (a point within the tolerance of an input point queried above -- a vertex, edge midpoint or
+  // triangle centroid of the input -- is near the input: its squared distance is given as tol^2,
+  // a bound, and it is not projected)
+  const Poisson_remesh::internal::Near_points<Point_3> near_input(input_points, tol);
   auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
     std::vector<std::pair<double, Point_3>> nearest(points.size());
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(points.size(), [&](std::size_t i) {
+      if(near_input.within(points[i].first, tol)) { nearest[i] = {tol * tol, points[i].second}; return; }
       const Point_3 p = ctx.project_on_surface(points[i].first, points[i].second);
       nearest[i] = {CGAL::to_double(CGAL::squared_distance(points[i].first, p)), p};
     });
