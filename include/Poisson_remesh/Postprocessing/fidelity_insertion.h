@@ -134,9 +134,9 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // (for each (c, hint) of `points`, the input point nearest c and its squared distance to c,
   // in the order of `points`, in parallel with CGAL::Parallel_tag; the search starts from `hint`,
   // a vertex of the mesh: on the input, and near c)
-  // (a point within the tolerance of an input point queried above -- a vertex, edge midpoint or
-  // triangle centroid of the input -- is near the input: its squared distance is given as tol^2,
-  // a bound, and it is not projected)
+  // (a point within the tolerance of a point of the input -- one of its vertices, edge midpoints
+  // and triangle centroids listed above, queried or not -- is near the input: its squared
+  // distance is given as tol^2, a bound, and it is not projected)
   const Poisson_remesh::internal::Near_points<Point_3> near_input(input_points, tol);
   auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
     std::vector<std::pair<double, Point_3>> nearest(points.size());
