@@ -66,8 +66,8 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs<C
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
 // of `changed` moved or are new. A box search of the changed faces against all faces, then
-// CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round was a tenth of
-// the remesh's time); when most faces changed, the whole mesh's pairs (a superset: the box
+// CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round would test
+// again every pair that no move touched); when most faces changed, the whole mesh's pairs (a superset: the box
 // search would only repeat self_intersections' own).
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange>
 Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
