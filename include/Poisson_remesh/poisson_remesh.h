@@ -353,7 +353,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     seconds_by_step += result.relaxation.seconds;
     internal::collect_garbage(output);
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
-    const auto places = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+    const auto places = internal::regrading_places<ConcurrencyTag>(output, input, is_fixed, is_tip, input_crossings, regrading);
     if(attempt == 0) first_count = num_vertices(output);
     const bool last = !places.remake_wanted(attempt == 0 ? nullptr : &previous_places) || attempt >= regrading_attempts ||
                       double(num_vertices(output)) > regrading.max_growth * double(first_count);
@@ -384,7 +384,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
                                                           radius, radii, seed + regrading.seed_step * k, local_remake, remake, undo);
             bool stop = remake.region_vertices == 0 || k >= regrading_attempts;
             if(changed) {
-              const auto current = internal::regrading_places(output, input, is_fixed, is_tip, input_crossings, regrading);
+              const auto current = internal::regrading_places<ConcurrencyTag>(output, input, is_fixed, is_tip, input_crossings, regrading);
               if(current.better_than(best_places)) best_places = current;
               else internal::undo_remake(output, kind_map, undo);
               internal::collect_garbage(output);

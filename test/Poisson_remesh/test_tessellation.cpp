@@ -17,9 +17,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -239,4 +243,36 @@ TEST_CASE("mutual tessellation runs on Polyhedron_3", "[tessellation]")
   const Figures f = tessellate_and_check("cube (Polyhedron_3)", p, 1.0);
   CHECK(f.leftovers == 0);
   CHECK(f.unjoined_feature_pairs == 0);
+}
+
+TEST_CASE("the tessellation's smallest angle of a triangle is the least of its three angles", "[tessellation]")
+{
+  // the tessellator takes the angle opposite the shortest side; judged here by the law of
+  // cosines at all three corners
+  typedef std::array<double, 3> V;
+  auto corner = [](const V& o, const V& a, const V& b) {
+    double ab = 0, oa = 0, ob = 0;
+    for(int i = 0; i < 3; ++i) {
+      ab += (a[i] - b[i]) * (a[i] - b[i]);
+      oa += (a[i] - o[i]) * (a[i] - o[i]);
+      ob += (b[i] - o[i]) * (b[i] - o[i]);
+    }
+    return std::acos(std::max(-1.0, std::min(1.0, (oa + ob - ab) / (2 * std::sqrt(oa * ob)))));
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t checked = 0;
+  for(int k = 0; k < 20000; ++k) {
+    V p[3];
+    for(auto& x : p) x = {u(rng), u(rng), u(rng)};
+    if(k % 4 == 1) p[2] = {0.5 * (p[0][0] + p[1][0]) + 1e-3 * u(rng), 0.5 * (p[0][1] + p[1][1]), 0.5 * (p[0][2] + p[1][2])};   // flat
+    if(k % 4 == 2) p[2] = {p[0][0] + 1e-3 * u(rng), p[0][1] + 1e-3 * u(rng), p[0][2]};                                          // needle
+    const double want = std::min({corner(p[0], p[1], p[2]), corner(p[1], p[2], p[0]), corner(p[2], p[0], p[1])});
+    for(int r = 0; r < 3; ++r) {   // every order of the corners
+      const double got = PR::internal::smallest_angle(p[r], p[(r + 1) % 3], p[(r + 2) % 3]);
+      REQUIRE(got == Approx(want).margin(1e-6));
+      ++checked;
+    }
+  }
+  CHECK(checked == 60000);
 }

@@ -96,12 +96,13 @@ std::size_t regularity_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_featu
 
 /// The last round of regularity flips (Regularity_settings::final_min_angle), taken back whole if it
 /// makes the mesh cut itself anew; `optimized_angle`: the angle optimization's (degrees).
-template <class Context, class Mesh, class IsFeatureEdge>
+/// `ConcurrencyTag`: the mode of the whole-mesh intersection search (the same result).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge>
 void final_regularity_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, const Regularity_settings& s, double max_normal_change,
                             double optimized_angle, Relaxation_statistics& stats)
 {
   if(!(s.final_min_angle > 0)) return;
-  const auto before = Poisson_remesh::internal::intersecting_pairs(m);
+  const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);
   std::vector<typename boost::graph_traits<Mesh>::halfedge_descriptor> flipped;
   // (nor under the mesh's smallest angle, up to optimized_angle: these flips trade little
   // regularity for the smallest angle)

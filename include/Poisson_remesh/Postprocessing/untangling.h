@@ -40,15 +40,16 @@ struct Untangling_settings
 };
 
 /// One round of untangling of `m`; with `collapses`, collapses too (counted there). Returns the
-/// number of changes made.
-template <class Context, class Mesh, class IsFeatureEdge, class IsCorner>
+/// number of changes made. `ConcurrencyTag`: the mode of the whole-mesh intersection search (the
+/// same result).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class IsCorner>
 std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_fixed, const Untangling_settings& s,
                      Relaxation_statistics& stats, std::size_t* collapses = nullptr)
 {
   typedef typename Context::Point_3 Point_3;
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-  auto pairs = Poisson_remesh::internal::intersecting_pairs(m);
+  auto pairs = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);
   if(pairs.empty() || pairs.size() > num_faces(m)) return 0;
   auto vpm = get(CGAL::vertex_point, m);
   // the faces' boxes in a grid, kept up to date by `refresh` after each change (taken back or

@@ -231,7 +231,7 @@ public:
     auto smooth = [&] { return clock.timed(T.angle_smoothing, [&] { return P::smooth_angles<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, stats, &smoothing_memory); }); };
     auto untangle = [&](std::size_t* collapses) {
       for(unsigned int round = 0; round < s.untangling.rounds; ++round)
-        if(clock.timed(T.untangling, [&] { return P::untangle(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses); }) == 0) break;
+        if(clock.timed(T.untangling, [&] { return P::untangle<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, s.untangling, stats, collapses); }) == 0) break;
     };
     auto report = [&](const char* stage, std::size_t done, std::size_t total) { if(progress_) progress_(stage, done, total); };
     const std::size_t optimization_steps = 8;   // (the reports of the steps after the Lloyd rounds)
@@ -273,7 +273,7 @@ public:
     }
     report("optimization", 5, optimization_steps);
     refine();
-    clock.timed(T.final_regularity, [&] { P::final_regularity_flips(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, optimized, stats); });
+    clock.timed(T.final_regularity, [&] { P::final_regularity_flips<ConcurrencyTag>(ctx, mesh, is_feature, s.regularity, s.max_flip_normal_change, optimized, stats); });
     report("optimization", 6, optimization_steps);
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it)

@@ -33,6 +33,9 @@ void delaunay_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, doubl
       auto h = halfedge(e, m);
       const Point_3 &P = get(get(CGAL::vertex_point, m), source(h, m)), &Q = get(get(CGAL::vertex_point, m), target(h, m));
       const Point_3 &R = get(get(CGAL::vertex_point, m), target(next(h, m), m)), &S = get(get(CGAL::vertex_point, m), target(next(opposite(h, m), m), m));
+      // (two acute opposite angles cannot sum to more than 180 degrees: most edges end here,
+      // without the angles; the signs are those of the angles' own cosine terms)
+      if(CGAL::to_double((P - R) * (Q - R)) > 0 && CGAL::to_double((P - S) * (Q - S)) > 0) continue;
       if(ctx.angle(P, R, Q) + ctx.angle(P, S, Q) <= CGAL_PI + 1e-9) continue;
       if(keep_regularity && ctx.irregular_change(h, m) > 0) {
         const double old_min = ctx.min_angle_of_faces(h, m);

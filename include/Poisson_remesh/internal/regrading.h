@@ -113,7 +113,7 @@ struct Regrading_places
   }
 };
 
-template <class TriangleMesh, class InputMesh, class IsFixed, class IsTip,
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class InputMesh, class IsFixed, class IsTip,
           class Point_3 = typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type>
 Regrading_places<Point_3>
 regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixed, IsTip is_tip,
@@ -132,7 +132,7 @@ regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixe
     const auto h = halfedge(f, tm);
     return CGAL::centroid(get(vpm, source(h, tm)), get(vpm, target(h, tm)), get(vpm, target(next(h, tm), tm)));
   };
-  const auto pairs = intersecting_pairs(tm);
+  const auto pairs = intersecting_pairs<ConcurrencyTag>(tm);
   if(!pairs.empty()) {
     if(!input_crossings) input_crossings.emplace(input);
     const double reach = 2 * mean_edge_length(tm, vpm);   // (as the quality report's)

@@ -44,9 +44,14 @@ inline double angle3(const Vec3& a, const Vec3& b) // radians, in [0, pi]
 {
   return std::atan2(norm3(cross3(a, b)), dot3(a, b));
 }
+// the smallest angle of triangle abc lies opposite its shortest side: one atan2 instead of three
+// (the flips of the tessellation ask for it four times per edge they look at)
 inline double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c)
 {
-  return std::min({angle3(sub3(b, a), sub3(c, a)), angle3(sub3(a, b), sub3(c, b)), angle3(sub3(a, c), sub3(b, c))});
+  const double ab = dot3(sub3(b, a), sub3(b, a)), bc = dot3(sub3(c, b), sub3(c, b)), ca = dot3(sub3(a, c), sub3(a, c));
+  if(bc <= ab && bc <= ca) return angle3(sub3(b, a), sub3(c, a));
+  if(ca <= ab) return angle3(sub3(a, b), sub3(c, b));
+  return angle3(sub3(a, c), sub3(b, c));
 }
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross3(sub3(b, a), sub3(c, a)); }
 
@@ -101,13 +106,15 @@ public:
     if(is_border_edge(h, tm) || is_feature(h)) return false;
     const vertex_descriptor a = source(h, tm), b = target(h, tm);
     const vertex_descriptor c = target(next(h, tm), tm), d = target(next(opposite(h, tm), tm), tm);
-    if(c == d || edge_exists(c, d)) return false;   // the new edge must not exist already
-    if(degree(a, tm) <= 3 || degree(b, tm) <= 3) return false;
+    if(c == d) return false;
     const Vec3 pa = xyz(a), pb = xyz(b), pc = xyz(c), pd = xyz(d);
-    // old triangles (a, b, c), (b, a, d); new ones (c, a, d), (d, b, c)
+    // old triangles (a, b, c), (b, a, d); new ones (c, a, d), (d, b, c); the angle test first:
+    // most edges fail it, and it is cheaper than walking the rings below
     const double old_min = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
     const double new_min = std::min(smallest_angle(pc, pa, pd), smallest_angle(pd, pb, pc));
     if(!(new_min > old_min + 1e-9)) return false;
+    if(edge_exists(c, d)) return false;   // the new edge must not exist already
+    if(degree(a, tm) <= 3 || degree(b, tm) <= 3) return false;
     const Vec3 n1 = triangle_normal(pa, pb, pc), n2 = triangle_normal(pb, pa, pd);
     const Vec3 m1 = triangle_normal(pc, pa, pd), m2 = triangle_normal(pd, pb, pc);
     if(norm3(m1) == 0 || norm3(m2) == 0) return false;
