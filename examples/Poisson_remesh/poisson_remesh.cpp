@@ -259,7 +259,7 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
   auto np = PR::parameters::check_self_intersections(o.self_intersections)
                            .sampled_hausdorff(!o.full_report)
                            .hausdorff_relative_error_bound(1e-4);
-  PR::Labelled_quality_reports reports = {{"input", PR::quality_report(input, np)}};
+  PR::Labelled_quality_reports reports = {{"input", PR::quality_report<CGAL::Parallel_if_available_tag>(input, np)}};
   std::optional<Mesh> peer;   // the peer's remesh, with --compare-peer (for --picture)
   try {
     if(o.method == "poisson") {
@@ -325,15 +325,15 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
       if(run.number_of_merged_samples)
         say << "  note: " << run.number_of_merged_samples
             << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
-      reports.push_back({"output (Poisson)", PR::quality_report(output, input, np)});
+      reports.push_back({"output (Poisson)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np)});
       if(o.compare_peer) {
         peer.emplace();
         run_peer(*peer);
-        reports.push_back({"peer (CGAL isotropic)", PR::quality_report(*peer, input, np)});
+        reports.push_back({"peer (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(*peer, input, np)});
       }
     } else {
       row.seconds_remesh = run_peer(output);
-      reports.push_back({"output (CGAL isotropic)", PR::quality_report(output, input, np)});
+      reports.push_back({"output (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np)});
     }
   } catch(const PR::Cancelled& e) {
     return fail(cli::internal_error, e.what());

@@ -21,6 +21,7 @@
 // must be declared before it is parsed, whatever the user included first.
 #include <CGAL/Kernel/global_functions.h>
 #include <Poisson_remesh/Features/detect_features.h>   // (internal::Vertex_ball)
+#include <Poisson_remesh/internal/parallel.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -489,10 +490,12 @@ class Reference_crossings
   typedef CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh> Primitive;
 
 public:
-  explicit Reference_crossings(const ReferenceMesh& ref)
+  /// (`ConcurrencyTag`: the mode of the search, the same pairs)
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
+  explicit Reference_crossings(const ReferenceMesh& ref, ConcurrencyTag = ConcurrencyTag())
   {
     std::vector<std::pair<ref_face, ref_face>> ref_pairs;
-    CGAL::Polygon_mesh_processing::self_intersections(ref, std::back_inserter(ref_pairs));
+    CGAL::Polygon_mesh_processing::self_intersections<ConcurrencyTag>(ref, std::back_inserter(ref_pairs));
     ref_pairs.erase(std::remove_if(ref_pairs.begin(), ref_pairs.end(), [](const auto& p) { return p.first == p.second; }), ref_pairs.end());
     number_of_pairs = ref_pairs.size();
     for(const auto& p : ref_pairs) { faces_.push_back(p.first); faces_.push_back(p.second); }
@@ -521,13 +524,13 @@ private:
 // the reference's self-intersecting face pairs, and those of tm's (`pairs`) that are not near them: a pair of tm is
 // near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
 // of the reference that cuts another
-template <class TriangleMesh, class VPM, class ReferenceMesh>
+template <class ConcurrencyTag, class TriangleMesh, class VPM, class ReferenceMesh>
 void fill_self_intersections_away_from_reference_ones(
   const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref,
   const std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor, typename boost::graph_traits<TriangleMesh>::face_descriptor>>& pairs,
   Quality_report& r)
 {
-  const Reference_crossings<ReferenceMesh> crossings(ref);
+  const Reference_crossings<ReferenceMesh> crossings(ref, ConcurrencyTag());
   r.number_of_reference_self_intersecting_face_pairs = crossings.number_of_pairs;
   if(crossings.number_of_pairs == 0) {
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
@@ -542,7 +545,7 @@ void fill_self_intersections_away_from_reference_ones(
 
 // quality_report(tm, np), and the self-intersecting face pairs in `pairs` (when checked and
 // `pairs` is given)
-template <class TriangleMesh, class NamedParameters>
+template <class ConcurrencyTag, class TriangleMesh, class NamedParameters>
 Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& np,
                                  std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor,
                                                        typename boost::graph_traits<TriangleMesh>::face_descriptor>>* pairs)
@@ -565,7 +568,7 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
   }
   if(check_si && !faces(tm).empty()) {
     std::size_t count = 0;
-    CGAL::Polygon_mesh_processing::self_intersections(
+    CGAL::Polygon_mesh_processing::self_intersections<ConcurrencyTag>(
       tm, boost::make_function_output_iterator([&](const std::pair<face_descriptor, face_descriptor>& fp) {
         ++count;
         if(pairs) pairs->push_back(fp);
@@ -586,27 +589,42 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
 // over sqrt 3, of one of their corners).
 // (A midpoint's or centroid's search starts from the point of the surface nearest one of its
 // vertices, found first: a nearby start that prunes the tree early, for the same distance.)
-template <class Mesh, class VPM, class Tree>
+// (`ConcurrencyTag`: the queries by TBB's threads, the same figures)
+template <class ConcurrencyTag, class Mesh, class VPM, class Tree>
 std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const Tree& tree)
 {
   typedef typename Tree::Point Point;
-  double lower = 0, cover = 0;
-  auto nearest = get(CGAL::dynamic_vertex_property_t<Point>(), a);
-  for(auto v : vertices(a)) {
-    const Point p = get(vpm, v), c = tree.closest_point(p);
-    put(nearest, v, c);
-    lower = std::max(lower, CGAL::to_double(CGAL::squared_distance(p, c)));
-  }
-  auto reach = [&](const Point& p, const Point& hint) { lower = std::max(lower, CGAL::to_double(tree.squared_distance(p, hint))); };
-  for(auto e : edges(a)) reach(CGAL::midpoint(get(vpm, source(e, a)), get(vpm, target(e, a))), get(nearest, source(e, a)));
-  for(auto f : faces(a)) {
-    const auto h = halfedge(f, a);
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+  typedef typename boost::graph_traits<Mesh>::edge_descriptor edge_descriptor;
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  const std::vector<vertex_descriptor> vs(vertices(a).begin(), vertices(a).end());
+  const std::vector<edge_descriptor> es(edges(a).begin(), edges(a).end());
+  const std::vector<face_descriptor> fs(faces(a).begin(), faces(a).end());
+  auto index = get(CGAL::dynamic_vertex_property_t<std::size_t>(), a);
+  for(std::size_t i = 0; i < vs.size(); ++i) put(index, vs[i], i);
+  // (each element's squared distance in its own slot, the largest taken after: any order of the
+  // threads gives the same figure)
+  std::vector<Point> nearest(vs.size());
+  std::vector<double> dv(vs.size()), de(es.size()), df(fs.size()), longest(fs.size());
+  for_each_index<ConcurrencyTag>(vs.size(), [&](std::size_t i) {
+    const Point p = get(vpm, vs[i]);
+    nearest[i] = tree.closest_point(p);
+    dv[i] = CGAL::to_double(CGAL::squared_distance(p, nearest[i]));
+  });
+  for_each_index<ConcurrencyTag>(es.size(), [&](std::size_t i) {
+    const auto h = halfedge(es[i], a);
+    de[i] = CGAL::to_double(tree.squared_distance(CGAL::midpoint(get(vpm, source(h, a)), get(vpm, target(h, a))), nearest[get(index, source(h, a))]));
+  });
+  for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
+    const auto h = halfedge(fs[i], a);
     const auto p = get(vpm, source(h, a)), q = get(vpm, target(h, a)), r = get(vpm, target(next(h, a), a));
-    reach(CGAL::centroid(p, q, r), get(nearest, source(h, a)));
-    const double l2 = std::max({CGAL::to_double(CGAL::squared_distance(p, q)), CGAL::to_double(CGAL::squared_distance(q, r)),
-                                CGAL::to_double(CGAL::squared_distance(r, p))});
-    cover = std::max(cover, l2);
-  }
+    df[i] = CGAL::to_double(tree.squared_distance(CGAL::centroid(p, q, r), nearest[get(index, source(h, a))]));
+    longest[i] = std::max({CGAL::to_double(CGAL::squared_distance(p, q)), CGAL::to_double(CGAL::squared_distance(q, r)),
+                           CGAL::to_double(CGAL::squared_distance(r, p))});
+  });
+  double lower = 0, cover = 0;
+  for(const std::vector<double>* d : {&dv, &de, &df}) for(double x : *d) lower = std::max(lower, x);
+  for(double x : longest) cover = std::max(cover, x);
   return {std::sqrt(lower), std::sqrt(cover) / (2 * std::sqrt(3.0))};
 }
 
@@ -620,13 +638,17 @@ std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, co
   - `check_self_intersections` (bool, default true): count self-intersecting face pairs with
     `CGAL::Polygon_mesh_processing::self_intersections()`
   - `angle_histogram_bin_width` (degrees, default 1)
+
+  `ConcurrencyTag`: CGAL::Sequential_tag (the default) or CGAL::Parallel_tag (needs TBB) /
+  CGAL::Parallel_if_available_tag: the self-intersection search by TBB's threads, with the same
+  figures.
 */
-template <class TriangleMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property>
 Quality_report quality_report(const TriangleMesh& tm,
                               const CGAL::Named_function_parameters<T, Tag, Base>& np = parameters::default_values())
 {
-  return internal::quality_report_of(tm, np, nullptr);
+  return internal::quality_report_of<ConcurrencyTag>(tm, np, nullptr);
 }
 
 /*!
@@ -648,9 +670,11 @@ Quality_report quality_report(const TriangleMesh& tm,
   at the tip (a cone of half-angle a: 2 asin(sin(a) sin 60 degrees)); wedges between sharp edges
   under 30 degrees; there no mesh keeping the corner reaches 30). When self-intersections are
   checked, also the reference's own self-intersecting pairs and tm's pairs away from them
-  (`number_of_self_intersecting_face_pairs_away_from_reference_ones`).
+  (`number_of_self_intersecting_face_pairs_away_from_reference_ones`). `ConcurrencyTag`: as above
+  (the sampled Hausdorff distance's queries too; CGAL's bounded-error one runs on one thread:
+  its parallel mode needs METIS).
 */
-template <class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class ReferenceMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property,
           class = std::enable_if_t<!internal::is_named_parameters<ReferenceMesh>::value>>
 Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& reference,
@@ -660,7 +684,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
   using parameters::get_parameter;
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   std::vector<std::pair<face_descriptor, face_descriptor>> pairs;   // (tm's self-intersections)
-  Quality_report r = internal::quality_report_of(tm, np, &pairs);
+  Quality_report r = internal::quality_report_of<ConcurrencyTag>(tm, np, &pairs);
   if(faces(tm).empty() || faces(reference).empty()) return r;
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
   const double rel_bound = choose_parameter(get_parameter(np, internal_np::hausdorff_relative_error_bound), 1e-4);
@@ -675,10 +699,13 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     typedef CGAL::AABB_tree<CGAL::AABB_traits<RK, CGAL::AABB_face_graph_triangle_primitive<ReferenceMesh>>> Reference_tree;
     Tm_tree tm_tree(faces(tm).first, faces(tm).second, tm, vpm);
     Reference_tree reference_tree(faces(reference).first, faces(reference).second, reference);
+    // (built here, not by the first query: the queries may run on several threads)
+    tm_tree.build();
+    reference_tree.build();
     tm_tree.accelerate_distance_queries();
     reference_tree.accelerate_distance_queries();
-    const auto there = internal::sampled_one_sided_hausdorff(tm, vpm, reference_tree);
-    const auto back = internal::sampled_one_sided_hausdorff(reference, get_const_property_map(CGAL::vertex_point, reference), tm_tree);
+    const auto there = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(tm, vpm, reference_tree);
+    const auto back = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(reference, get_const_property_map(CGAL::vertex_point, reference), tm_tree);
     const double h = std::max(there.first, back.first);
     r.hausdorff_absolute = h;
     r.hausdorff = diag > 0 ? h / diag : 0.0;
@@ -692,7 +719,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     r.hausdorff_error_bound = rel_bound;
   }
   internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
-  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, pairs, r);
+  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones<ConcurrencyTag>(tm, vpm, reference, pairs, r);
   return r;
 }
 

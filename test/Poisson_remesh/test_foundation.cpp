@@ -24,6 +24,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 #include <fstream>
 #include <map>
 #include <set>
@@ -696,6 +697,41 @@ TEST_CASE("sizing: edge length and disk radius follow from the vertex count", "[
   CHECK(1.0 / (2 * std::sqrt(3.0) * r * r) == Approx(500.0));
   CHECK(PR::disk_radius_from_vertex_count(1.0, 500.0) == Approx(0.844 * r));
   CHECK_THROWS_AS(PR::edge_length_from_vertex_count(-1, 10), std::invalid_argument);
+}
+
+TEST_CASE("the parallel quality report gives the sequential one's figures", "[report][parallel]")
+{
+  // a mesh that cuts itself, against a jittered copy of it that cuts itself more (both searches,
+  // both Hausdorff directions, and the crossings away from the reference's own)
+  analytic::Soup s = analytic::sphere(24, 12), t = analytic::sphere(24, 12);
+  const std::size_t offset = s.points.size();
+  for(auto p : t.points) s.points.push_back({p[0] + 0.5, p[1], p[2]});
+  for(auto f : t.triangles) s.triangles.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  const Mesh reference = s.to_mesh<Mesh>();
+  Mesh m = reference;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  for(auto v : vertices(m)) m.point(v) = m.point(v) + K::Vector_3(u(rng), u(rng), u(rng));
+  for(bool sampled : {true, false}) {
+    const auto np = PR::parameters::sampled_hausdorff(sampled).hausdorff_relative_error_bound(1e-3);
+    const PR::Quality_report a = PR::quality_report(m, reference, np);
+    const PR::Quality_report b = PR::quality_report<CGAL::Parallel_if_available_tag>(m, reference, np);
+    REQUIRE(a.number_of_self_intersecting_face_pairs > 0);
+    CHECK(b.number_of_self_intersecting_face_pairs == a.number_of_self_intersecting_face_pairs);
+    REQUIRE(a.number_of_reference_self_intersecting_face_pairs);
+    CHECK(*b.number_of_reference_self_intersecting_face_pairs == *a.number_of_reference_self_intersecting_face_pairs);
+    CHECK(*b.number_of_self_intersecting_face_pairs_away_from_reference_ones == *a.number_of_self_intersecting_face_pairs_away_from_reference_ones);
+    REQUIRE(a.hausdorff);
+    REQUIRE(b.hausdorff);
+    CHECK(b.hausdorff_sampled == sampled);
+    CHECK(*b.hausdorff == *a.hausdorff);   // (the largest of the same distances)
+    CHECK(*b.hausdorff_error_bound == *a.hausdorff_error_bound);
+    CHECK(b.min_angle == a.min_angle);
+    CHECK(b.mean_min_angle == a.mean_min_angle);
+    CHECK(b.irregular_share == a.irregular_share);
+    const PR::Quality_report c = PR::quality_report(m), d = PR::quality_report<CGAL::Parallel_if_available_tag>(m);
+    CHECK(d.number_of_self_intersecting_face_pairs == c.number_of_self_intersecting_face_pairs);
+  }
 }
 
 TEST_CASE("the sampled Hausdorff distance brackets CGAL's bounded-error one", "[report]")
