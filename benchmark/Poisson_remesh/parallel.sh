@@ -6,7 +6,7 @@
 # N threads are the same file.
 # Usage: parallel.sh [BUILD_DIR] [THREADS] [MESH...]   (default: armadillo bunny00 camel fandisk
 # elephant; a mesh is a name of build/data/meshes without .off). Each time is the best of 2 runs
-# of the remesh call inside the program (the figure it prints), seed 1.
+# (RUNS=N: of N) of the remesh call inside the program (the figure it prints), seed 1.
 # Then the sampler alone (poisson_sample): samples per second of the sequential sampler, and of
 # the parallel mode's slabs with 1 and N threads.
 set -uo pipefail
@@ -19,10 +19,11 @@ meshes=("$@")
 [ ${#meshes[@]} -eq 0 ] && meshes=(armadillo bunny00 camel fandisk elephant)
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 seconds() { sed -n 's/.* \.\.\. \([0-9.e-]*\) s (.*/\1/p' "$1" | head -1; }
-best() {   # best() NAME ARGS...: the smaller remesh time of two runs; the output kept in $out/NAME.off
+runs="${RUNS:-2}"   # (RUNS=N: the best of N runs of each remesh; this machine's speed moves by up to 40%)
+best() {   # best() NAME ARGS...: the smallest remesh time of $runs runs; the output kept in $out/NAME.off
   local name=$1; shift
   local b=""
-  for run in 1 2; do
+  for run in $(seq "$runs"); do
     "$program" --quiet --no-self-intersections --seed 1 "$@" "$out/$name.off" > "$out/$name.log" 2>&1 || { echo "failed"; return; }
     local s; s=$(seconds "$out/$name.log")
     if [ -z "$b" ] || awk -v s="$s" -v b="$b" 'BEGIN { exit !(s < b) }'; then b=$s; fi
