@@ -44,9 +44,10 @@ struct Lloyd_guard
     if(!(floor > 0)) return true;
     const std::size_t fd = feature_degree;
     const Point_3 from = get(get(CGAL::vertex_point, m), v);
-    const double before = ctx.smallest_angles_around(v, m, from).first;
     double after = ctx.smallest_angles_around(v, m, target).first;
-    if(after < floor && after < before) {   // half the way, on the input (on the curve)
+    if(!(after < floor)) return true;   // (most moves: the star as it is need not be measured)
+    const double before = ctx.smallest_angles_around(v, m, from).first;
+    if(after < before) {   // half the way, on the input (on the curve)
       const Point_3 half = CGAL::midpoint(from, target);
       target = fd == 0 ? ctx.project_on_surface(half, from) : ctx.project_on_features(half, from);
       if(fd == 0 && CGAL::to_double(CGAL::squared_distance(target, half)) > CGAL::square(max_jump)) return false;

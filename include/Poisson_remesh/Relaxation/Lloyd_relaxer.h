@@ -197,7 +197,7 @@ public:
       clock.timed(T.delaunay_flips, [&] { Relaxation::delaunay_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.sliver_angle, stats, keep); });
     };
     auto valence = [&] {
-      clock.timed(T.valence_flips, [&] { Relaxation::valence_flips(ctx, mesh, is_feature, s.max_flip_normal_change, s.valence_flip_min_angle_ratio, stats); });
+      clock.timed(T.valence_flips, [&] { Relaxation::valence_flips<ConcurrencyTag>(ctx, mesh, is_feature, s.max_flip_normal_change, s.valence_flip_min_angle_ratio, stats); });
     };
     auto paper_round = [&](auto fixed) {
       lloyd(fixed);

@@ -10,7 +10,9 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/parallel.h>
 #include <cmath>
+#include <vector>
 
 namespace Poisson_remesh {
 
@@ -28,16 +30,24 @@ double ideal_valence(const Context& ctx, typename boost::graph_traits<Mesh>::ver
   return sum * 180 / CGAL_PI / 60 + (is_border(v, m) ? 1 : 0);
 }
 
-/// One pass of valence flips over the edges of `m` (Eq. 8).
-template <class Context, class Mesh, class IsFeatureEdge>
+/// One pass of valence flips over the edges of `m` (Eq. 8). `ConcurrencyTag`: the ideal valences
+/// are first computed on TBB's threads (each reads only its vertex's star; the same result).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge>
 void valence_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, double max_normal_change, double min_angle_ratio,
                    Relaxation_statistics& stats)
 {
   const double cos_max = std::cos(max_normal_change * CGAL_PI / 180);
-  // the ideal valences, computed once per vertex and again only after a flip at the vertex
+  // the ideal valences, computed once per vertex and again only after a flip at the vertex (a
+  // flip changes the triangles of its four vertices alone: the others' angle sums stay)
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   auto cache = get(CGAL::dynamic_vertex_property_t<double>(), m);
-  for(auto v : vertices(m)) put(cache, v, -1.0);
-  auto ideal = [&](typename boost::graph_traits<Mesh>::vertex_descriptor v) {
+  {
+    const std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
+    std::vector<double> first(vs.size());
+    internal::for_each_index<ConcurrencyTag>(vs.size(), [&](std::size_t i) { first[i] = ideal_valence(ctx, vs[i], m); });
+    for(std::size_t i = 0; i < vs.size(); ++i) put(cache, vs[i], first[i]);
+  }
+  auto ideal = [&](vertex_descriptor v) {
     double o = get(cache, v);
     if(o < 0) { o = ideal_valence(ctx, v, m); put(cache, v, o); }
     return o;
