@@ -463,10 +463,12 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
 
   `ConcurrencyTag`: CGAL::Sequential_tag (the default) or CGAL::Parallel_tag (needs TBB;
   CGAL::Parallel_if_available_tag falls back to Sequential_tag without it). In the parallel mode
-  the default relaxer's vertex passes (Lloyd steps, angle smoothing and optimization) and its
-  fidelity distance queries run on TBB's threads (as many as TBB is allowed: tbb::global_control);
-  the sampling, the tessellation and the flips stay sequential. The output is the same in both
-  modes and for any number of threads, for a given `random_seed`.
+  the sampling runs by slabs of the surface, and the default relaxer's vertex passes (Lloyd steps,
+  angle smoothing and optimization), its fidelity distance queries, the valence flips' ideal
+  valences and the whole-mesh self-intersection searches run on TBB's threads (as many as TBB is
+  allowed: tbb::global_control); the tessellation and the flips themselves stay sequential. For a
+  given `random_seed` the output is the same for any number of threads; it is not the
+  sequential mode's (the slabs draw another maximal sample set, as another seed would).
 */
 template <class ConcurrencyTag = CGAL::Sequential_tag, class InputMesh, class OutputMesh, class NamedParameters = parameters::Default_named_parameters>
 Poisson_remesh_result poisson_remesh(const InputMesh& input, OutputMesh& output,
