@@ -178,7 +178,7 @@ public:
       return &anchors.emplace(v, get(get(CGAL::vertex_point, mesh), v)).first->second;
     };
     // a vertex added may take the descriptor of one removed before it (a Surface_mesh recycles
-    // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no anchor, until the step
+    // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no recorded pin position, until the step
     // that adds it says so (the whole list is searched: the fidelity insertions append to it
     // before they sort it)
     auto added_vertex = [&](vertex_descriptor v, bool on_feature) {

@@ -36,32 +36,13 @@ public:
   double squared_distance(const Point_3& p) const
   {
     double best = std::numeric_limits<double>::infinity();
-    const Cell c = cell_of(p);
-    for(long long dx = -1; dx <= 1; ++dx)
-      for(long long dy = -1; dy <= 1; ++dy)
-        for(long long dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}});
-          if(it == cells_.end()) continue;
-          for(const Point_3& q : it->second) best = std::min(best, CGAL::to_double(CGAL::squared_distance(p, q)));
-        }
+    any_near(p, [&](double d2) { best = std::min(best, d2); return false; });
     return best;
   }
-  /// whether a point lies within `d` (<= the cell) of `p` (its own cell is looked at first)
+  /// whether a point lies within `d` (<= the cell) of `p`
   bool within(const Point_3& p, double d) const
   {
-    const Cell c = cell_of(p);
-    auto in = [&](const Cell& k) {
-      const auto it = cells_.find(k);
-      if(it == cells_.end()) return false;
-      for(const Point_3& q : it->second) if(CGAL::to_double(CGAL::squared_distance(p, q)) <= d * d) return true;
-      return false;
-    };
-    if(in(c)) return true;
-    for(long long dx = -1; dx <= 1; ++dx)
-      for(long long dy = -1; dy <= 1; ++dy)
-        for(long long dz = -1; dz <= 1; ++dz)
-          if((dx != 0 || dy != 0 || dz != 0) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
-    return false;
+    return any_near(p, [&](double d2) { return d2 <= d * d; });
   }
   /// whether a point lies within `d` (<= the cell) of the triangle (a, b, c)
   template <class Triangle_3>
@@ -87,6 +68,26 @@ public:
   }
 
 private:
+  // stop(d2) for the squared distance d2 from p to each point of p's cell and of the 26 around it
+  // (its own cell first: the likeliest to hold what is looked for), until stop returns true;
+  // returns whether it did
+  template <class Stop>
+  bool any_near(const Point_3& p, Stop stop) const
+  {
+    const Cell c = cell_of(p);
+    auto in = [&](const Cell& k) {
+      const auto it = cells_.find(k);
+      if(it == cells_.end()) return false;
+      for(const Point_3& q : it->second) if(stop(CGAL::to_double(CGAL::squared_distance(p, q)))) return true;
+      return false;
+    };
+    if(in(c)) return true;
+    for(long long dx = -1; dx <= 1; ++dx)
+      for(long long dy = -1; dy <= 1; ++dy)
+        for(long long dz = -1; dz <= 1; ++dz)
+          if((dx != 0 || dy != 0 || dz != 0) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
+    return false;
+  }
   Cell cell_of(double x, double y, double z) const
   {
     return Cell{{(long long)std::floor(x / cell_), (long long)std::floor(y / cell_), (long long)std::floor(z / cell_)}};

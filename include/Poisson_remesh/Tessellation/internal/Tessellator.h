@@ -48,10 +48,11 @@ inline double angle3(const Vec3& a, const Vec3& b) // radians, in [0, pi]
 // (the flips of the tessellation ask for it four times per edge they look at)
 inline double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c)
 {
-  const double ab = dot3(sub3(b, a), sub3(b, a)), bc = dot3(sub3(c, b), sub3(c, b)), ca = dot3(sub3(a, c), sub3(a, c));
-  if(bc <= ab && bc <= ca) return angle3(sub3(b, a), sub3(c, a));
-  if(ca <= ab) return angle3(sub3(a, b), sub3(c, b));
-  return angle3(sub3(a, c), sub3(b, c));
+  auto squared_length = [](const Vec3& v) { return dot3(v, v); };
+  const double ab = squared_length(sub3(b, a)), bc = squared_length(sub3(c, b)), ca = squared_length(sub3(a, c));
+  if(bc <= ab && bc <= ca) return angle3(sub3(b, a), sub3(c, a));   // at a
+  if(ca <= ab) return angle3(sub3(a, b), sub3(c, b));                // at b
+  return angle3(sub3(a, c), sub3(b, c));                             // at c
 }
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross3(sub3(b, a), sub3(c, a)); }
 
