@@ -25,12 +25,13 @@
 //
 // usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices N] [--max-vertices N]
 //            [--seed S] [--jobs N] [--timeout SECONDS] [--peer-iterations N] [--peer-sharp-angle DEG]
-//            [--calibrate N] [--ablation all|op,op] [--markdown FILE] [--json FILE]
+//            [--calibrate N] [--ablation all|op,op] [--markdown FILE] [--json FILE] [--save-meshes DIR] [--iterations K]
 #include "benchmark_support.h"
 #include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/read_surface_mesh.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -154,11 +155,13 @@ struct Options
   double peer_sharp_angle = 60;
   double factor = 1;   // --factor: the target vertex count over the input's
   PR::Curvature_density curvature;   // --gamma, --edge-ratio: the adaptive contender's density
+  unsigned int iterations = 0;   // --iterations: ours's relaxation rounds (0: the library's default)
+  std::string save_meshes;   // --save-meshes: the folder each contender's output is written to (empty: none)
 };
 static Options options;
 
 // Runs one contender ("cgal", "ours", "ours-adaptive", "ours-local" or "ours-<operator>") on a mesh, in the child.
-static Figures run_contender(const std::string& contender, const Mesh& input)
+static Figures run_contender(const std::string& contender, const std::string& mesh_name, const Mesh& input)
 {
   const double target = std::max(4.0, std::round(options.factor * double(num_vertices(input))));
   Mesh output;
@@ -176,6 +179,7 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
     f.runs = r.runs;
   } else {
     PR::Relaxation_settings settings;
+    if(options.iterations > 0) settings.iterations = options.iterations;
     bool grading = true;
     unsigned int remakes = 6;
     // ours-local: the remakes of the regions at fault alone (local_remakes), calibrated like ours
@@ -211,6 +215,11 @@ static Figures run_contender(const std::string& contender, const Mesh& input)
       if(std::abs(V - target) <= 0.02 * target) break;
       asked *= target / std::max(V, 1.0);
     }
+  }
+  if(!options.save_meshes.empty()) {
+    const std::string file = options.save_meshes + "/" + mesh_name + "_" + contender + ".off";
+    if(!CGAL::IO::write_polygon_mesh(file, output, CGAL::parameters::stream_precision(17)))
+      std::cerr << "corpus_benchmark: could not write " << file << "\n";
   }
   const Figures m = measure(output, input);
   Figures r = m;
@@ -300,7 +309,7 @@ static std::vector<Row> run_all(const std::vector<Task>& tasks, const std::strin
           Mesh input;
           PR::read_surface_mesh(tasks[i].file, input);
           row.input_vertices = double(num_vertices(input));
-          row.f = run_contender(tasks[i].contender, input);
+          row.f = run_contender(tasks[i].contender, tasks[i].mesh, input);
           row.ok = true;
         } catch(const std::exception& e) {
           row.error = e.what();
@@ -491,6 +500,8 @@ int main(int argc, char** argv)
       else if(a == "--gamma") options.curvature.gamma = std::stod(value());
       else if(a == "--edge-ratio") options.curvature.edge_ratio = std::stod(value());
       else if(a == "--contenders") contenders = split(value());
+      else if(a == "--save-meshes") options.save_meshes = value();
+      else if(a == "--iterations") options.iterations = unsigned(std::stoul(value()));
       else if(a == "--ablation") {
         const std::string v = value();
         if(v == "all") for(const Operator& op : operators()) ablated.push_back(op.name);
@@ -507,7 +518,7 @@ int main(int argc, char** argv)
                      "         [--seed 1] [--jobs 1] [--timeout 900] [--peer-iterations 10] [--peer-sharp-angle 60]\n"
                      "         [--calibrate 3] [--ablation all|op,op] [--markdown FILE] [--json FILE]\n"
                      "         [--merge A.json,B.json] [--factor 1] [--adaptive [--gamma 1] [--edge-ratio 5]]\n"
-                     "         [--contenders cgal,ours,...]\n"
+                     "         [--contenders cgal,ours,...] [--save-meshes DIR] [--iterations K]\n"
                      "Remeshes every CGAL data mesh within the vertex range at its own vertex count, ours beside\n"
                      "CGAL's isotropic_remeshing, judges the floor, and with --ablation reruns ours with each\n"
                      "step beyond the paper switched off. --merge tables the rows of earlier runs' JSON files\n"
@@ -517,7 +528,9 @@ int main(int argc, char** argv)
                      "--gamma and --edge-ratio), calibrated like ours, and its RMS and Hausdorff distances\n"
                      "against ours with the uniform density. --contenders runs only those named (cgal, ours,\n"
                      "ours-adaptive, ours-local: the remakes of the regions at fault alone, ours-<step>), to\n"
-                     "--merge with other runs. The steps:\n";
+                     "--merge with other runs. --save-meshes DIR writes each output as DIR/<mesh>_<contender>.off\n"
+                     "(the kept calibration run; DIR must exist). --iterations K: our relaxation's Lloyd rounds\n"
+                     "(Relaxation_settings::iterations; default: the library's). The steps:\n";
         for(const Operator& op : operators()) std::cout << "  " << op.name << ": " << op.what << "\n";
         return 0;
       }

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -163,6 +164,19 @@ PR::Relaxation_settings nothing_but_the_last_lloyd_pass()
   return s;
 }
 
+// relax() with the fidelity insertions alone (`on`; no final pass), at most `share` of the vertex
+// count inserted per pass, or with nothing
+PR::Relaxation_settings fidelity_alone(bool on, double share)
+{
+  PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+  if(on) {
+    s.fidelity.max_deviation = 0.008;
+    s.fidelity.max_insertions_share = share;
+    s.fidelity.final_pass = false;
+  }
+  return s;
+}
+
 struct Counting_new_vertex
 {
   std::vector<std::pair<V, bool>>* added;
@@ -228,12 +242,7 @@ TEST_CASE("fidelity insertions: a crest finer than the spacing, cut across by th
     const double before = farthest(input_points, m);
     REQUIRE(before > 0.05);   // the crest is missed by about its height
     const long chi = euler_characteristic(m);
-    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
-    if(on) {
-      s.fidelity.max_deviation = 0.008;
-      s.fidelity.max_insertions_share = 0.25;
-      s.fidelity.final_pass = false;
-    }
+    const PR::Relaxation_settings s = fidelity_alone(on, 0.25);
     std::vector<std::pair<V, bool>> added;
     std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
     relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
@@ -253,6 +262,104 @@ TEST_CASE("fidelity insertions: a crest finer than the spacing, cut across by th
       CHECK(added.empty());
       CHECK(after == Approx(before));
     }
+  }
+}
+
+TEST_CASE("fidelity insertions: a border that turns tighter than the spacing gets vertices on its curve", "[operators][fidelity]")
+{
+  // the input: a flat disk whose border is a fine polygon (96 sides); the mesh: a hexagon fan of
+  // points of that border, whose border edges are chords 0.13 radii inside the input's border
+  const std::size_t sides = 96, rings = 8;
+  analytic::Soup fine;
+  fine.points.push_back({0, 0, 0});
+  for(std::size_t r = 1; r <= rings; ++r)
+    for(std::size_t k = 0; k < sides; ++k) {
+      const double t = 2 * CGAL_PI * double(k) / double(sides), rho = double(r) / double(rings);
+      fine.points.push_back({rho * std::cos(t), rho * std::sin(t), 0});
+    }
+  auto id = [&](std::size_t r, std::size_t k) { return r == 0 ? std::size_t(0) : 1 + (r - 1) * sides + k % sides; };
+  for(std::size_t k = 0; k < sides; ++k) fine.triangles.push_back({id(0, 0), id(1, k), id(1, k + 1)});
+  for(std::size_t r = 1; r < rings; ++r)
+    for(std::size_t k = 0; k < sides; ++k) fine.quad(id(r, k), id(r + 1, k), id(r + 1, k + 1), id(r, k + 1));
+  const Mesh in = fine.to_mesh<Mesh>();
+  REQUIRE(border_cycles(in) == 1);
+  std::vector<Point> rim;   // the input's border vertices
+  for(std::size_t k = 0; k < sides; ++k) rim.push_back(Point(fine.points[id(rings, k)][0], fine.points[id(rings, k)][1], 0));
+  // the distance from p to the input's border polygon (the judge's own segment distance)
+  auto to_rim = [&](const Point& p) {
+    double d = std::numeric_limits<double>::infinity();
+    for(std::size_t k = 0; k < sides; ++k) d = std::min(d, std::sqrt(CGAL::squared_distance(p, K::Segment_3(rim[k], rim[(k + 1) % sides]))));
+    return d;
+  };
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("fidelity insertions " << (on ? "on" : "off"));
+    analytic::Soup coarse;
+    coarse.points.push_back({0, 0, 0});
+    for(std::size_t k = 0; k < 6; ++k) coarse.points.push_back(fine.points[id(rings, k * sides / 6)]);
+    for(std::size_t k = 0; k < 6; ++k) coarse.triangles.push_back({0, 1 + k, 1 + (k + 1) % 6});
+    Mesh m = coarse.to_mesh<Mesh>();
+    const double before = farthest(rim, m);
+    REQUIRE(before > 0.12);   // 1 - cos(30 degrees) at the chords' middles
+    const long chi = euler_characteristic(m);
+    const PR::Relaxation_settings s = fidelity_alone(on, 1);
+    std::vector<std::pair<V, bool>> added;
+    relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
+    m.collect_garbage();
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
+    const double after = farthest(rim, m);
+    if(on) {
+      // new border vertices, on the input's border, and the border follows it more closely
+      REQUIRE(!added.empty());
+      std::size_t on_rim = 0;
+      for(const auto& [v, on_feature] : added) {
+        CHECK(on_feature);
+        CHECK(bool(is_border(v, m)));
+        CHECK(to_rim(m.point(v)) < 1e-9);
+        on_rim += is_border(v, m) ? 1 : 0;
+      }
+      CHECK(on_rim >= 3);
+      CHECK(after < 0.5 * before);
+    } else {
+      CHECK(added.empty());
+      CHECK(after == Approx(before));
+    }
+  }
+}
+
+TEST_CASE("an edge split is taken back whole, on a border too", "[operators][fidelity]")
+{
+  // the fidelity insertions split an edge, check the new triangles, and may take the split back
+  for(bool border : {false, true}) {
+    INFO((border ? "a border edge" : "an interior edge"));
+    Mesh m = square(4);
+    const V a = vertex_at(m, border ? 0.25 : 0.5, border ? 0.0 : 0.5), b = vertex_at(m, border ? 0.5 : 0.75, border ? 0.0 : 0.75);
+    // the halfedge from a to b, or none
+    auto between = [&](V x, V y) {
+      for(auto g : CGAL::halfedges_around_target(y, m)) if(source(g, m) == x) return g;
+      return Mesh::null_halfedge();
+    };
+    auto h = between(a, b);
+    REQUIRE(h != Mesh::null_halfedge());
+    if(is_border(h, m)) h = opposite(h, m);
+    REQUIRE(is_border(opposite(h, m), m) == border);
+    const std::size_t nv = num_vertices(m), nf = num_faces(m);
+    const long chi = euler_characteristic(m);
+    const V v = Context::insert_vertex_on_edge(h, CGAL::midpoint(m.point(a), m.point(b)), m);
+    CHECK(degree(v, m) == (border ? 3u : 4u));
+    CHECK(num_faces(m) == nf + (border ? 1 : 2));
+    Context::remove_vertex_on_edge(v, a, b, m);
+    CHECK(between(a, b) != Mesh::null_halfedge());   // (the edge is back; before the garbage goes, a and b are theirs)
+    m.collect_garbage();
+    CHECK(CGAL::is_valid_polygon_mesh(m));
+    CHECK(num_vertices(m) == nv);
+    CHECK(num_faces(m) == nf);
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
   }
 }
 

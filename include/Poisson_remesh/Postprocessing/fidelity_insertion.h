@@ -5,9 +5,12 @@
 // bounding-box diagonal) from the mesh -- rims and crests finer than the spacing, cut across by the
 // triangles -- are inserted where they are (the nearest triangle split there), at most one per
 // triangle and its neighbours; the other way, a triangle or an edge that far from the input takes
-// the input point nearest to it. At most `max_insertions_share` of the vertex count per pass,
-// farthest first. Constraints: the new vertices are on the input; an insertion that would make the
-// mesh cut itself anew is taken back (and tried as an edge split instead); no topology change.
+// the input point nearest to it, and an edge along a border or a feature curve whose midpoint is
+// that far from its curve is split at the curve's point nearest the midpoint (a border or crest
+// turning tighter than the spacing). At most `max_insertions_share` of the vertex count per pass,
+// farthest first. Constraints: the new vertices are on the input (on the curve for a curve's
+// edge); an insertion that would make the mesh cut itself anew is taken back (and tried as an
+// edge split instead); no topology change.
 
 #ifndef POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
 #define POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
@@ -43,8 +46,9 @@ struct Fidelity_settings
   bool final_pass = true;
 };
 
-/// One pass of fidelity insertions in `m`; `new_vertex(v, false)` is told each new vertex, which is
-/// also added to `added` (kept sorted: the caller pins these vertices). The distance queries run on
+/// One pass of fidelity insertions in `m`; `new_vertex(v, on_curve)` is told each new vertex (true
+/// for a split of a border or feature curve's edge); the others are also added to `added` (kept
+/// sorted: the caller pins these vertices). The distance queries run on
 /// TBB's threads with `ConcurrencyTag` = CGAL::Parallel_tag (`is_feature` is called from one thread;
 /// the result is the same in both modes). Returns the number of vertices inserted.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class NewVertex>
@@ -165,20 +169,37 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::vertex_descriptor vertex_descriptor;
-  std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor>> far_edges;
+  // (the split point, the edge's ends, and whether the edge follows a feature curve or a border)
+  std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor, bool>> far_edges;
   std::vector<halfedge_descriptor> hs;
   points.clear();
   for(auto e : edges(m)) {
-    const halfedge_descriptor h = halfedge(e, m);
-    if(is_border_edge(h, m) || is_feature(e)) continue;
+    halfedge_descriptor h = halfedge(e, m);
     const Point_3 x = CGAL::midpoint(get(vpm, source(h, m)), get(vpm, target(h, m)));
     if(CGAL::to_double(CGAL::squared_distance(x, get(vpm, source(h, m)))) <= near_vertex * near_vertex) continue;
+    if(is_border_edge(h, m) || is_feature(e)) {
+      // an edge along a border or a feature curve is a chord of that curve: where the chord is
+      // farther than the tolerance from the curve (a border or crest that turns tighter than the
+      // spacing), the edge is split at the curve's point nearest its midpoint, which stays on
+      // the curve (within half the edge's length of the midpoint, and not within a quarter of it
+      // of either end: a point past an end belongs to the next chord, or to another curve)
+      const double max_offset = 0.5, min_end_distance = 0.25;   // (times the edge's length)
+      if(is_border(h, m)) h = opposite(h, m);   // (the halfedge in a triangle)
+      const Point_3 q = ctx.project_on_features(x, get(vpm, source(h, m)));
+      const double d2 = CGAL::to_double(CGAL::squared_distance(x, q));
+      const double l2 = CGAL::to_double(CGAL::squared_distance(get(vpm, source(h, m)), get(vpm, target(h, m))));
+      const double end2 = CGAL::square(min_end_distance) * l2;
+      if(d2 > tol * tol && d2 <= CGAL::square(max_offset) * l2 && CGAL::to_double(CGAL::squared_distance(q, get(vpm, source(h, m)))) >= end2 &&
+         CGAL::to_double(CGAL::squared_distance(q, get(vpm, target(h, m)))) >= end2)
+        far_edges.push_back({d2, q, source(h, m), target(h, m), true});
+      continue;
+    }
     hs.push_back(h);
     points.push_back({x, get(vpm, source(h, m))});
   }
   const auto nearest = nearest_on_input(points);
   for(std::size_t i = 0; i < hs.size(); ++i)
-    if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m)});
+    if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m), false});
   if(far.empty() && far_edges.empty()) return 0;
   std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);   // intersections there already
@@ -225,15 +246,19 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     }
   // a split of an edge of `order` at p (the first that works) is kept if it makes the mesh cut
   // itself nowhere new and turns no triangle by more than acos(min_cos) from both old ones
-  auto try_split = [&](const Point_3& p, const std::vector<std::pair<double, halfedge_descriptor>>& order, double min_cos) {
+  // (`on_curve`: the edge follows a border or a feature curve, and so does the new vertex; x is
+  // then the edge's halfedge in a triangle)
+  auto try_split = [&](const Point_3& p, const std::vector<std::pair<double, halfedge_descriptor>>& order, double min_cos, bool on_curve) {
     for(const auto& candidate : order) {
       const auto x = candidate.second;
       const vertex_descriptor a = source(x, m), b = target(x, m);
+      const bool one_side = is_border(opposite(x, m), m);
       const Vector_3 n1 = ctx.normal(get(vpm, a), get(vpm, b), get(vpm, target(next(x, m), m)));
-      const Vector_3 n2 = ctx.normal(get(vpm, b), get(vpm, a), get(vpm, target(next(opposite(x, m), m), m)));
+      const Vector_3 n2 = one_side ? n1 : ctx.normal(get(vpm, b), get(vpm, a), get(vpm, target(next(opposite(x, m), m), m)));
       const vertex_descriptor v = ctx.insert_vertex_on_edge(x, p, m);
       bool ok = true;
       for(auto h : CGAL::halfedges_around_target(v, m)) {
+        if(is_border(h, m)) continue;
         const Vector_3 n = ctx.normal(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m)));
         ok = ok && (ctx.cos_between(n, n1) >= min_cos || ctx.cos_between(n, n2) >= min_cos);
       }
@@ -243,8 +268,10 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
         ctx.for_vertices_of_new_intersections(m, decltype(before)(), Poisson_remesh::internal::faces_around(m, std::vector<vertex_descriptor>(1, v)),
                                           [&](vertex_descriptor y) { if(y == v) ok = false; });
       if(!ok) { ctx.remove_vertex_on_edge(v, a, b, m); continue; }
-      new_vertex(v, false);
-      added.push_back(v);
+      new_vertex(v, on_curve);
+      // (a vertex on a curve is not pinned: it slides along the curve like the feature samples,
+      // and stays on it)
+      if(!on_curve) added.push_back(v);
       ++done;
       return true;
     }
@@ -260,20 +287,21 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
       order.push_back({CGAL::to_double(CGAL::squared_distance(p, typename GeomTraits::Segment_3(get(vpm, source(x, m)), get(vpm, target(x, m))))), x});
     }
     std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    try_split(p, order, 0.26);
+    try_split(p, order, 0.26, false);
   }
   // the edges far from the input (those still in the mesh), each triangle split once at most,
   // turning a triangle by 60 degrees at most (the limit of ctx.folds())
   std::sort(far_edges.begin(), far_edges.end(), [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
   std::set<vertex_descriptor> split_near;
   std::size_t edge_splits = 0;
-  for(const auto& [d2, p, a, b] : far_edges) {
+  for(const auto& [d2, p, a, b, on_curve] : far_edges) {
     if(edge_splits >= cap) break;
     const auto [h, exists] = halfedge(a, b, m);
     if(!exists || split_near.count(a) || split_near.count(b)) continue;
     for(auto x : {h, opposite(h, m)})
-      for(vertex_descriptor y : CGAL::vertices_around_face(x, m)) split_near.insert(y);
-    if(try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5)) ++edge_splits;
+      if(!is_border(x, m))
+        for(vertex_descriptor y : CGAL::vertices_around_face(x, m)) split_near.insert(y);
+    if(try_split(p, std::vector<std::pair<double, halfedge_descriptor>>(1, {d2, h}), 0.5, on_curve)) ++edge_splits;
   }
   std::sort(added.begin(), added.end());   // (the caller looks its pinned vertices up)
   stats.fidelity_insertions += done;

@@ -435,12 +435,23 @@ public:
     return v;
   }
 
-  // the inverse of insert_vertex_on_edge for an interior edge (a, b): v's four triangles become two
+  // the inverse of insert_vertex_on_edge for the edge (a, b): v's four triangles become two (its
+  // two become one on a border)
   template <class Mesh>
   static void remove_vertex_on_edge(typename boost::graph_traits<Mesh>::vertex_descriptor v,
                                     typename boost::graph_traits<Mesh>::vertex_descriptor a,
                                     typename boost::graph_traits<Mesh>::vertex_descriptor b, Mesh& m)
   {
+    if(is_border(v, m)) {   // (a border edge split: one triangle on each side of v's inner edge)
+      auto inner = boost::graph_traits<Mesh>::null_halfedge(), to_a = inner;
+      for(auto h : CGAL::halfedges_around_source(v, m)) {
+        if(target(h, m) == a) to_a = h;
+        else if(target(h, m) != b) inner = h;
+      }
+      CGAL::Euler::join_face(inner, m);
+      CGAL::Euler::join_vertex(to_a, m);   // (v goes, a stays)
+      return;
+    }
     const auto g = CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
     auto to_a = boost::graph_traits<Mesh>::null_halfedge(), to_b = boost::graph_traits<Mesh>::null_halfedge();
     for(auto x : CGAL::halfedges_around_face(g, m)) {
