@@ -31,13 +31,13 @@
 #include <Poisson_remesh/poisson_remesh.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/read_surface_mesh.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/version.h>
 

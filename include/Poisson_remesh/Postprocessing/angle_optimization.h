@@ -41,15 +41,15 @@ std::size_t optimize_angles(const Context& ctx, Mesh& m, IsFeatureEdge is_featur
                                                        max_deviation, stats);
 }
 
-/// One round in which only the pinned vertices of the fidelity insertions (`pin_anchor(x)`: where
+/// One round in which only the pinned vertices of the fidelity insertions (`pin_position(x)`: where
 /// x was put, nullptr for the others) at a triangle sharper than `sliver_angle` move, within a
 /// quarter of the tolerance of where they were put. Returns the number of vertices moved.
-template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class IsFixed, class PinAnchor>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class IsFixed, class PinPosition>
 std::size_t optimize_pinned_vertices(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, const Angle_optimization_settings& s,
-                                     double sliver_angle, double max_deviation, Relaxation_statistics& stats, PinAnchor pin_anchor)
+                                     double sliver_angle, double max_deviation, Relaxation_statistics& stats, PinPosition pin_position)
 {
   return Postprocessing::internal::vertex_angle_search<ConcurrencyTag>(ctx, m, is_feature, is_fixed, Angle_goal::smallest, s.optimized_angle, sliver_angle,
-                                                       max_deviation, stats, pin_anchor, true);
+                                                       max_deviation, stats, pin_position, true);
 }
 
 } // namespace Postprocessing

@@ -172,18 +172,18 @@ public:
     std::vector<vertex_descriptor> pinned;   // the vertices of the fidelity insertions stay where they are put
     auto is_fixed = [&](vertex_descriptor v) { return is_corner(v) || std::binary_search(pinned.begin(), pinned.end(), v); };
     // (but near a sliver, they may move a little from there: P::optimize_pinned_vertices)
-    std::map<vertex_descriptor, Point_3> anchors;
-    auto pin_anchor = [&](vertex_descriptor v) -> const Point_3* {
+    std::map<vertex_descriptor, Point_3> pin_positions;
+    auto pin_position = [&](vertex_descriptor v) -> const Point_3* {
       if(!std::binary_search(pinned.begin(), pinned.end(), v)) return nullptr;
-      return &anchors.emplace(v, get(get(CGAL::vertex_point, mesh), v)).first->second;
+      return &pin_positions.emplace(v, get(get(CGAL::vertex_point, mesh), v)).first->second;
     };
     // a vertex added may take the descriptor of one removed before it (a Surface_mesh recycles
-    // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no recorded pin position, until the step
-    // that adds it says so (the whole list is searched: the fidelity insertions append to it
-    // before they sort it)
+    // indices, a Polyhedron_3 memory): it is no pinned vertex, and has no recorded pin position,
+    // until the step that adds it says so (the whole list is searched: the fidelity insertions
+    // append to it before they sort it)
     auto added_vertex = [&](vertex_descriptor v, bool on_feature) {
       pinned.erase(std::remove(pinned.begin(), pinned.end(), v), pinned.end());
-      anchors.erase(v);
+      pin_positions.erase(v);
       new_vertex(v, on_feature);
     };
     const double tolerance = s.fidelity.max_deviation, optimized = s.angle_optimization.optimized_angle;
@@ -277,7 +277,7 @@ public:
     report("optimization", 6, optimization_steps);
     if(!pinned.empty())
       for(unsigned int it = 0; it < s.angle_optimization.rounds; ++it)
-        if(clock.timed(T.pinned_optimization, [&] { return P::optimize_pinned_vertices<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_anchor); }) == 0)
+        if(clock.timed(T.pinned_optimization, [&] { return P::optimize_pinned_vertices<ConcurrencyTag>(ctx, mesh, is_feature, is_fixed, s.angle_optimization, s.sliver_angle, tolerance, stats, pin_position); }) == 0)
           break;
     report("optimization", 7, optimization_steps);
     std::size_t collapses = 0;

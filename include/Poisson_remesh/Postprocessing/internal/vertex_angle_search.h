@@ -34,7 +34,7 @@ namespace internal {
 /// vertices already well placed, with a shorter search). With `pinned_only` (Angle_goal::smallest),
 /// only the vertices of the fidelity insertions (fixed for is_corner) at a triangle sharper than
 /// `sliver_angle` move, by a quarter of the fidelity tolerance (`max_deviation` times the diagonal)
-/// at most from where they were put, `pin_anchor(x)` (nullptr for the others): they still hold the
+/// at most from where they were put, `pin_position(x)` (nullptr for the others): they still hold the
 /// mesh near the input. A move that makes the mesh cut itself anew is taken back. With `unmoved`
 /// (not null), the digest of each vertex's star -- its point, its ring's points, border and
 /// feature flags and tip scales, its movability -- is kept when its search moves nothing, and a
@@ -44,10 +44,10 @@ namespace internal {
 /// searched (internal/parallel.h), each round at once: the same result as in sequence, for any
 /// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
 /// the number of vertices moved.
-template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinAnchor>
+template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
-                                PinAnchor pin_anchor, bool pinned_only,
+                                PinPosition pin_position, bool pinned_only,
                                 std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr)
 {
   typedef typename Context::Point_3 Point_3;
@@ -62,7 +62,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   const double pin_reach = 0.25 * max_deviation * ctx.diagonal(), sliver = sliver_angle * CGAL_PI / 180;
   auto movability = [&](vertex_descriptor x) {
     if(pinned_only)
-      return pin_reach > 0 && pin_anchor(x) != nullptr && ctx.feature_degree(x, m, is_feature) == 0 && !is_border(x, m) &&
+      return pin_reach > 0 && pin_position(x) != nullptr && ctx.feature_degree(x, m, is_feature) == 0 && !is_border(x, m) &&
              ctx.smallest_angles_around(x, m, get(vpm, x)).first < sliver ? 0 : 2;
     const int c = ctx.constraint(x, m, is_feature, is_corner);
     return !smoothing && c == 2 && !is_corner(x) && ctx.feature_degree(x, m, is_feature) == 1 ? 1 : c;
@@ -226,9 +226,9 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   for(const auto& round : Poisson_remesh::internal::dependency_rounds(m, todo)) {
     found.clear();
     for(vertex_descriptor v : round) {
-      // (sequential: pin_anchor may remember the pin)
+      // (sequential: pin_position may remember the pin)
       const int c = movability(v);
-      found.push_back(Found{v, c, pinned_only ? pin_anchor(v) : nullptr, 0, false, get(vpm, v), get(vpm, v)});
+      found.push_back(Found{v, c, pinned_only ? pin_position(v) : nullptr, 0, false, get(vpm, v), get(vpm, v)});
     }
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(found.size(), [&](std::size_t i) {
       Found& x = found[i];
