@@ -136,6 +136,7 @@ static std::vector<Operator> operators()
     {"refinement", "flip, removal or insertion at triangles under 30°", [](S& s, bool&, unsigned&) { s.refinement.rounds = 0; }},
     {"final_regularity", "last regularity flips keeping 30°", [](S& s, bool&, unsigned&) { s.regularity.final_min_angle = 0; }},
     {"untangling", "moves, flips and collapses removing crossings", [](S& s, bool&, unsigned&) { s.untangling.rounds = 0; }},
+    {"local_repair", "flip, split or none, then the region searched, at triangles under 30°", [](S& s, bool&, unsigned&) { s.local_repair.rounds = 0; }},
     {"feature_grading", "finer sampling around pointed tips", [](S&, bool& g, unsigned&) { g = false; }},
     {"remakes", "whole remakes, finer where the result failed", [](S&, bool&, unsigned& r) { r = 0; }},
   };

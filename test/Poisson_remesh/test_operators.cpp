@@ -161,6 +161,7 @@ PR::Relaxation_settings nothing_but_the_last_lloyd_pass()
   s.angle_optimization.rounds = 0;
   s.refinement.rounds = 0;
   s.untangling.rounds = 0;
+  s.local_repair.rounds = 0;
   return s;
 }
 
@@ -493,6 +494,51 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
       CHECK(count_below(m, 30) <= sharp);
       CHECK(min_angle(m) > worst + 5);
     } else {
+      CHECK(count_below(m, 30) == sharp);
+      CHECK(min_angle(m) == worst);
+    }
+  }
+}
+
+TEST_CASE("local repair: a sharp triangle at vertices that may not move gets the change that, with the moves after it, raises its region", "[operators][repair]")
+{
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("local repair " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    // an interior vertex pushed towards a diagonal neighbour; every vertex of the grid is fixed
+    // (only the vertices a change adds may move): a flip or a split, and the new vertex's moves,
+    // must mend the triangles
+    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
+    m.point(v) = Point(3.0 / 6 + 0.8 / 6, 3.0 / 6 + 0.7 / 6, 0);
+    std::vector<V> grid(vertices(m).begin(), vertices(m).end());
+    auto fixed = [&](V x) { return std::find(grid.begin(), grid.end(), x) != grid.end(); };
+    const std::size_t sharp = count_below(m, 30);
+    const double worst = min_angle(m);
+    REQUIRE(sharp >= 2);
+    REQUIRE(no_fold_in_plane(m));
+    const long chi = euler_characteristic(m);
+    const std::size_t count = num_vertices(m);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) s.local_repair.rounds = 4;
+    std::vector<std::pair<V, bool>> added;
+    const auto stats = relaxer.relax(m, no_feature, fixed, s, Counting_new_vertex{&added});
+    m.collect_garbage();
+    CHECK(euler_characteristic(m) == chi);
+    CHECK(border_cycles(m) == 1);
+    CHECK(no_fold_in_plane(m));
+    for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+    INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
+    if(on) {
+      CHECK(stats.repair_changes > 0);
+      CHECK(count_below(m, 30) < sharp);
+      CHECK(min_angle(m) > worst + 5);
+      CHECK(num_vertices(m) <= count + stats.repair_changes);   // (a split per change at most; the trials' vertices removed)
+    } else {
+      CHECK(stats.repair_changes == 0);
+      CHECK(added.empty());
       CHECK(count_below(m, 30) == sharp);
       CHECK(min_angle(m) == worst);
     }

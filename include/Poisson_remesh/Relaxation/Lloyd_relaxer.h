@@ -11,7 +11,8 @@
 //   - angle smoothing (angle_smoothing.h) and angle optimization (angle_optimization.h);
 //   - regularity flips (regularity_flips.h);
 //   - refinement at the triangles still sharp (refinement.h);
-//   - untangling of the crossings left (untangling.h).
+//   - untangling of the crossings left (untangling.h);
+//   - local repair of the triangles still sharp (local_repair.h).
 // Each works locally under the same constraints -- no topology change, every vertex on the input,
 // no new self-intersection (a crossing near the input's own is not new) -- and takes back its own
 // changes. The schedule is relax() below.
@@ -33,6 +34,7 @@
 #include <Poisson_remesh/Postprocessing/regularity_flips.h>
 #include <Poisson_remesh/Postprocessing/refinement.h>
 #include <Poisson_remesh/Postprocessing/untangling.h>
+#include <Poisson_remesh/Postprocessing/local_repair.h>
 
 #include <algorithm>
 #include <functional>
@@ -74,6 +76,7 @@ struct Relaxation_settings
   Postprocessing::Angle_optimization_settings angle_optimization;
   Postprocessing::Refinement_settings refinement;
   Postprocessing::Untangling_settings untangling;
+  Postprocessing::Local_repair_settings local_repair;
   /// @}
 };
 
@@ -287,6 +290,10 @@ public:
       refine();
       untangle(nullptr);
     }
+    if constexpr(may_add)
+      for(unsigned int round = 0; round < s.local_repair.rounds; ++round)
+        if(clock.timed(T.local_repair, [&] { return P::repair_sharp_triangles(ctx, mesh, is_feature, is_fixed, added_vertex, s.local_repair, s.sliver_angle, tolerance, stats); }) == 0)
+          break;
     report("optimization", optimization_steps, optimization_steps);
     return stats;
   }

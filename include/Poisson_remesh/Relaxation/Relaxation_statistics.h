@@ -24,7 +24,8 @@ struct Relaxation_times
   /// the operators beyond the paper (Postprocessing/)
   /// @{
   double sliver_collapse = 0, fidelity = 0, angle_smoothing = 0, regularity = 0,
-         angle_optimization = 0, refinement = 0, final_regularity = 0, pinned_optimization = 0, untangling = 0;
+         angle_optimization = 0, refinement = 0, final_regularity = 0, pinned_optimization = 0, untangling = 0,
+         local_repair = 0;
   /// @}
 
   /// calls `f(name, seconds)` for each step, in the schedule's order
@@ -44,16 +45,16 @@ struct Relaxation_times
 
 private:
   typedef std::pair<const char*, double Relaxation_times::*> Step;
-  static const std::array<Step, 12>& steps()
+  static const std::array<Step, 13>& steps()
   {
-    static const std::array<Step, 12> s = {{
+    static const std::array<Step, 13> s = {{
       {"lloyd", &Relaxation_times::lloyd}, {"delaunay_flips", &Relaxation_times::delaunay_flips},
       {"valence_flips", &Relaxation_times::valence_flips},
       {"sliver_collapse", &Relaxation_times::sliver_collapse}, {"fidelity", &Relaxation_times::fidelity},
       {"angle_smoothing", &Relaxation_times::angle_smoothing}, {"regularity", &Relaxation_times::regularity},
       {"angle_optimization", &Relaxation_times::angle_optimization}, {"refinement", &Relaxation_times::refinement},
       {"final_regularity", &Relaxation_times::final_regularity}, {"pinned_optimization", &Relaxation_times::pinned_optimization},
-      {"untangling", &Relaxation_times::untangling}}};
+      {"untangling", &Relaxation_times::untangling}, {"local_repair", &Relaxation_times::local_repair}}};
     return s;
   }
 };
@@ -105,6 +106,7 @@ struct Relaxation_statistics
   std::size_t refinement_flips = 0, refinement_removals = 0;
   /// @}
   std::size_t untangle_changes = 0;   ///< moves and flips that left fewer crossing face pairs
+  std::size_t repair_changes = 0;   ///< changes of the local repair kept (a flip, a split or moves, with the moves after it)
   std::size_t unchanged_stars = 0;   ///< smoothing searches not made again: the star as it was when its search moved nothing
   Relaxation_times seconds;   ///< the time of each step
 };

@@ -43,12 +43,14 @@ namespace internal {
 /// CGAL::Parallel_tag the vertices search in rounds of vertices whose earlier neighbours have
 /// searched (internal/parallel.h), each round at once: the same result as in sequence, for any
 /// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
-/// the number of vertices moved.
+/// the number of vertices moved. With `only` (not null; Angle_goal::smallest), the vertices searched
+/// are those of `only`, in its order, at a triangle sharper than `optimized_angle`.
 template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
                                 PinPosition pin_position, bool pinned_only,
-                                std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr)
+                                std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr,
+                                const std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>* only = nullptr)
 {
   typedef typename Context::Point_3 Point_3;
   typedef typename Context::Vector_3 Vector_3;
@@ -67,7 +69,14 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const int c = ctx.constraint(x, m, is_feature, is_corner);
     return !smoothing && c == 2 && !is_corner(x) && ctx.feature_degree(x, m, is_feature) == 1 ? 1 : c;
   };
-  if(smoothing) {
+  if(only != nullptr) {   // (Angle_goal::smallest: those of `only` at a triangle sharper than optimized_angle)
+    for(vertex_descriptor x : *only) {
+      bool at_sharp = false;
+      for(auto h : CGAL::halfedges_around_target(x, m))
+        if(!is_border(h, m) && ctx.min_angle(get(vpm, source(h, m)), get(vpm, x), get(vpm, target(next(h, m), m))) < sharp) { at_sharp = true; break; }
+      if(at_sharp && movability(x) < 2) todo.push_back(x);
+    }
+  } else if(smoothing) {
     for(vertex_descriptor x : vertices(m)) if(movability(x) < 2) todo.push_back(x);
   } else {   // (in the order of vertices(m), not of the descriptors: a Polyhedron_3's are addresses)
     auto at_sharp = get(CGAL::dynamic_vertex_property_t<bool>(), m);
