@@ -462,6 +462,28 @@ TEST_CASE("regularity flips: a grid with one diagonal turned gets its valence-6 
   }
 }
 
+namespace {
+// square(6) with an interior vertex pushed towards its diagonal neighbour: sharp triangles
+Mesh grid_with_a_pushed_vertex()
+{
+  Mesh m = square(6);
+  const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
+  m.point(v) = Point(3.0 / 6 + 0.8 / 6, 3.0 / 6 + 0.7 / 6, 0);
+  REQUIRE(count_below(m, 30) >= 2);
+  REQUIRE(no_fold_in_plane(m));
+  return m;
+}
+// after a change: still a flat square, one border, no fold, as many holes as before (`chi`)
+void check_still_the_flat_square(Mesh& m, long chi)
+{
+  m.collect_garbage();
+  CHECK(euler_characteristic(m) == chi);
+  CHECK(border_cycles(m) == 1);
+  CHECK(no_fold_in_plane(m));
+  for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+}
+} // namespace
+
 TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a removal or a new vertex", "[operators][refinement]")
 {
   const Mesh in = square(24);
@@ -469,25 +491,16 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
   PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
   for(bool on : {false, true}) {
     INFO("refinement " << (on ? "on" : "off"));
-    Mesh m = square(6);
-    // an interior vertex pushed towards a diagonal neighbour: pinned (all vertices are), its
-    // triangles sharp; only a change of connectivity can mend them
-    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
-    m.point(v) = Point(3.0 / 6 + 0.8 / 6, 3.0 / 6 + 0.7 / 6, 0);
+    // every vertex pinned: only a change of connectivity can mend the triangles
+    Mesh m = grid_with_a_pushed_vertex();
     const std::size_t sharp = count_below(m, 30);
     const double worst = min_angle(m);
-    REQUIRE(sharp >= 2);
-    REQUIRE(no_fold_in_plane(m));
     const long chi = euler_characteristic(m);
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.refinement.rounds = 3;
     std::vector<std::pair<V, bool>> added;
     const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
-    m.collect_garbage();
-    CHECK(euler_characteristic(m) == chi);
-    CHECK(border_cycles(m) == 1);
-    CHECK(no_fold_in_plane(m));
-    for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+    check_still_the_flat_square(m, chi);
     INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
     if(on) {
       CHECK(stats.refinement_flips + stats.refinement_removals + stats.refinement_insertions > 0);
@@ -507,29 +520,20 @@ TEST_CASE("local repair: a sharp triangle at vertices that may not move gets the
   PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
   for(bool on : {false, true}) {
     INFO("local repair " << (on ? "on" : "off"));
-    Mesh m = square(6);
-    // an interior vertex pushed towards a diagonal neighbour; every vertex of the grid is fixed
-    // (only the vertices a change adds may move): a flip or a split, and the new vertex's moves,
-    // must mend the triangles
-    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
-    m.point(v) = Point(3.0 / 6 + 0.8 / 6, 3.0 / 6 + 0.7 / 6, 0);
+    // every vertex of the grid is fixed (only the vertices a change adds may move): a flip or a
+    // split, and the new vertex's moves, must mend the triangles
+    Mesh m = grid_with_a_pushed_vertex();
     std::vector<V> grid(vertices(m).begin(), vertices(m).end());
     auto fixed = [&](V x) { return std::find(grid.begin(), grid.end(), x) != grid.end(); };
     const std::size_t sharp = count_below(m, 30);
     const double worst = min_angle(m);
-    REQUIRE(sharp >= 2);
-    REQUIRE(no_fold_in_plane(m));
     const long chi = euler_characteristic(m);
     const std::size_t count = num_vertices(m);
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.local_repair.rounds = 4;
     std::vector<std::pair<V, bool>> added;
     const auto stats = relaxer.relax(m, no_feature, fixed, s, Counting_new_vertex{&added});
-    m.collect_garbage();
-    CHECK(euler_characteristic(m) == chi);
-    CHECK(border_cycles(m) == 1);
-    CHECK(no_fold_in_plane(m));
-    for(V x : vertices(m)) CHECK(std::abs(m.point(x).z()) < 1e-12);
+    check_still_the_flat_square(m, chi);
     INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
     if(on) {
       CHECK(stats.repair_changes > 0);
