@@ -60,13 +60,8 @@ template <class Context, class Mesh, class VertexRange>
 std::vector<double> sharp_angles_around(const Context& ctx, const Mesh& m, const VertexRange& region, double sliver)
 {
   auto vpm = get(CGAL::vertex_point, m);
-  std::vector<typename boost::graph_traits<Mesh>::face_descriptor> fs;
-  for(auto v : region)
-    for(auto h : CGAL::halfedges_around_target(v, m)) if(!is_border(h, m)) fs.push_back(face(h, m));
-  std::sort(fs.begin(), fs.end());
-  fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
   std::vector<double> out;
-  for(auto f : fs) {
+  for(auto f : Poisson_remesh::internal::faces_around(m, region)) {
     const auto h = halfedge(f, m);
     const double a = ctx.min_angle(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
     if(a < sliver) out.push_back(a);
@@ -90,13 +85,12 @@ inline bool sharp_angles_better(const std::vector<double>& after, const std::vec
 } // namespace internal
 
 /// One round of local repair of `m` at the triangles sharper than `sliver_angle` (degrees);
-/// `max_deviation`: the fidelity tolerance (times the diagonal) that bounds the pinned vertices'
-/// moves; `is_fixed`: the vertices that may not move (corners, pinned vertices). `new_vertex(v,
+/// `is_fixed`: the vertices that may not move (corners, pinned vertices). `new_vertex(v,
 /// on_feature)` is told each vertex a split adds, a trial's too (the trials' vertices are removed
 /// again). Returns the number of candidates kept.
 template <class Context, class Mesh, class IsFeatureEdge, class IsFixed, class NewVertex>
 std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsFixed is_fixed, NewVertex new_vertex,
-                                   const Local_repair_settings& s, double sliver_angle, double max_deviation, Relaxation_statistics& stats)
+                                   const Local_repair_settings& s, double sliver_angle, Relaxation_statistics& stats)
 {
   typedef typename Context::Point_3 Point_3;
   typedef boost::graph_traits<Mesh> GT;
@@ -155,16 +149,8 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
         ring_begin = ring_end;
       }
     }
-    auto region_faces = [&](const std::vector<vertex_descriptor>& r) {
-      std::vector<face_descriptor> fs;
-      for(vertex_descriptor x : r)
-        for(halfedge_descriptor g : CGAL::halfedges_around_target(x, m)) if(!is_border(g, m)) fs.push_back(face(g, m));
-      std::sort(fs.begin(), fs.end());
-      fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
-      return fs;
-    };
     const std::vector<double> before = internal::sharp_angles_around(ctx, m, region, sliver);
-    const std::size_t crossings_before = Poisson_remesh::internal::intersecting_pairs_near(m, region_faces(region)).size();
+    const std::size_t crossings_before = Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, region)).size();
     std::vector<std::pair<vertex_descriptor, Point_3>> positions;
     for(vertex_descriptor x : region) positions.push_back({x, get(vpm, x)});
 
@@ -204,14 +190,14 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
           searched.push_back(made.added);
         }
         // a change that crosses the mesh is taken back
-        if(Poisson_remesh::internal::intersecting_pairs_near(m, region_faces(searched)).size() > crossings_before) {
+        if(Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, searched)).size() > crossings_before) {
           take_back(made, c);
           return;
         }
       }
       for(unsigned int round = 0; round < s.search_rounds; ++round)
         if(Postprocessing::internal::vertex_angle_search<CGAL::Sequential_tag>(ctx, m, is_feature, is_fixed, Angle_goal::smallest, s.searched_angle,
-                                                                              sliver_angle, max_deviation, scratch, no_pin, false, nullptr, &searched) == 0)
+                                                                              sliver_angle, 0 /* (no pinned_only moves) */, scratch, no_pin, false, nullptr, &searched) == 0)
           break;
       made.valid = true;
       result = internal::sharp_angles_around(ctx, m, searched, sliver);
@@ -235,7 +221,7 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
     ++kept;
     std::vector<vertex_descriptor> searched = region;
     if(made.added != GT::null_vertex()) searched.push_back(made.added);
-    for(face_descriptor g : region_faces(searched)) {
+    for(face_descriptor g : Poisson_remesh::internal::faces_around(m, searched)) {
       const halfedge_descriptor hg = halfedge(g, m);
       const std::array<vertex_descriptor, 3> w = {source(hg, m), target(hg, m), target(next(hg, m), m)};
       const double a = ctx.min_angle(get(vpm, w[0]), get(vpm, w[1]), get(vpm, w[2]));

@@ -292,7 +292,7 @@ public:
     }
     if constexpr(may_add)
       for(unsigned int round = 0; round < s.local_repair.rounds; ++round)
-        if(clock.timed(T.local_repair, [&] { return P::repair_sharp_triangles(ctx, mesh, is_feature, is_fixed, added_vertex, s.local_repair, s.sliver_angle, tolerance, stats); }) == 0)
+        if(clock.timed(T.local_repair, [&] { return P::repair_sharp_triangles(ctx, mesh, is_feature, is_fixed, added_vertex, s.local_repair, s.sliver_angle, stats); }) == 0)
           break;
     report("optimization", optimization_steps, optimization_steps);
     return stats;
