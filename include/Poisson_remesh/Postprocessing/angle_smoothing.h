@@ -4,7 +4,8 @@
 // centroids are the best positions for the energy of §6.2, not for the angles of a given
 // connectivity: every movable vertex moves (a free one in its tangent plane, then onto the input;
 // a feature vertex along its curve) to raise the sum of its triangles' smallest angles without
-// lowering the smallest of them, by a short pattern search. Constraints: vertices on the input;
+// lowering the smallest of them, by a short compass search (the first direction that gains is
+// taken). Constraints: vertices on the input;
 // moves only; a move that makes the mesh cut itself anew is taken back.
 
 #ifndef POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H

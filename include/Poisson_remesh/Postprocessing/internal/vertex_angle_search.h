@@ -206,20 +206,37 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // onto itself -- the step would never shrink)
     const bool in_plane = smoothing && c == 0;
     double step = (smoothing ? 0.1 : 0.2) * mean;
-    for(int iteration = 0; iteration < (smoothing ? 10 : 40) && step > 0.01 * mean; ++iteration) {
+    // the smoothing polls opportunistically (a compass search): it takes the first direction that
+    // gains, starting with the last one that did, within the trials that polling every direction
+    // at each of its 10 steps would make; the angle optimization, whose smallest angle is not
+    // smooth, takes the best of all directions at each step
+    const std::size_t nd = dirs.size();
+    std::size_t trials = smoothing ? 10 * nd : 0, first = 0;
+    for(int iteration = 0; iteration < (smoothing ? int(10 * nd) : 40) && step > 0.01 * mean; ++iteration) {
       Point_3 best_q = p;
       double best_here = best;
-      for(const Vector_3& d : dirs) {
+      for(std::size_t k = 0; k < nd; ++k) {
+        const std::size_t i = (first + k) % nd;
+        const Vector_3& d = dirs[i];
         const Point_3 t = p + step * d;
         const Point_3 q = in_plane ? t : c == 0 ? ctx.project_on_surface(t, p) : ctx.project_on_features(t, p);
         if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
         if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
         if(pin != nullptr && CGAL::to_double(CGAL::squared_distance(q, *pin)) > pin_reach * pin_reach) continue;
+        if(smoothing) {
+          if(trials == 0) break;
+          --trials;
+        }
         const double a = objective(q, best_here + 1e-9);
-        if(a > best_here + 1e-9) { best_here = a; best_q = q; }
+        if(a > best_here + 1e-9) {
+          best_here = a;
+          best_q = q;
+          if(smoothing && a > best + 1e-6) { first = i; break; }
+        }
       }
       if(best_here > best + 1e-6) { best = best_here; p = best_q; }
       else step *= 0.5;
+      if(smoothing && trials == 0) break;
     }
     if(in_plane && p != start) {   // onto the input; kept if still better there
       p = ctx.project_on_surface(p, start);

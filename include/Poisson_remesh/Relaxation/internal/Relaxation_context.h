@@ -408,8 +408,18 @@ public:
   {
     const Vector_3 now = normal(a, at, b);
     const double lnow = std::sqrt(CGAL::to_double(now.squared_length()));
-    if(!(ln > 0 && lnow > 0) || CGAL::to_double(n * now) / (ln * lnow) < 0.5) return -1;
-    return sa == 1 && sb == 1 ? min_angle(a, at, b) : std::min({angle(at, a, b) * sa, angle(a, at, b), angle(a, b, at) * sb});
+    if(!(ln > 0 && lnow > 0) || CGAL::to_double(n * now) < 0.5 * ln * lnow) return -1;
+    // (the angle searches spend most of their time here: each angle is atan2 of twice the area,
+    // lnow, the same at every corner, over the dot product of the corner's edges)
+    auto angle_at = [lnow](const Point_3& o, const Point_3& x, const Point_3& y) { return std::atan2(lnow, CGAL::to_double((x - o) * (y - o))); };
+    if(sa == 1 && sb == 1) {   // (the smallest angle lies opposite the shortest edge)
+      const double l_a = CGAL::to_double(CGAL::squared_distance(at, b)), l_at = CGAL::to_double(CGAL::squared_distance(a, b));
+      const double l_b = CGAL::to_double(CGAL::squared_distance(a, at));
+      if(l_at <= l_a && l_at <= l_b) return angle_at(at, a, b);
+      if(l_a <= l_b) return angle_at(a, at, b);
+      return angle_at(b, a, at);
+    }
+    return std::min({angle_at(a, at, b) * sa, angle_at(at, a, b), angle_at(b, a, at) * sb});
   }
 
   // what a vertex may do: 2 fixed (a corner, or where features meet), 1 slide on a feature, 0 free
