@@ -348,8 +348,8 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
     else if(cuts < 2 && get(defect, v) > 0) tips[to_v3(get(rvpm, v))] = v;
   }
   // the largest smallest angle at v of a fan of triangles whose other vertices lie on the
-  // reference at distance `scale` from v: seen from v, the reference's intersection with that
-  // sphere is a loop of directions of length L (on the unit sphere); the angle at v of a triangle
+  // reference at distance `scale` from v: seen from v, the reference's points at that distance
+  // form a loop of unit directions of length L; the angle at v of a triangle
   // is the great-circle distance between the directions of its other two vertices, so a fan of k
   // triangles has one of at most L / k, and for k = 3 (every two of the three vertices in one
   // triangle) the best is found by trying the triples of directions along the loop

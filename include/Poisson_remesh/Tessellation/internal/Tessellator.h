@@ -710,7 +710,7 @@ public:
           if(c == d || edge_exists(c, d) || degree(a, tm) <= 3 || degree(b, tm) <= 3) continue;
           const Vec3 pa = xyz(a), pb = xyz(b), pc = xyz(c), pd = xyz(d);
           if(!(norm3(triangle_normal(pc, pa, pd)) > 0) || !(norm3(triangle_normal(pd, pb, pc)) > 0)) continue;
-          // the faces to count against: those the two faces cross, and the stars of the quad's corners
+          // the faces to count against: those the two faces cross, and the stars of the two faces' four vertices
           std::vector<face_descriptor> others;
           partners_of(face(h, tm), others);
           if(!is_border(opposite(h, tm), tm)) partners_of(face(opposite(h, tm), tm), others);
