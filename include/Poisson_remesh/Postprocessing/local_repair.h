@@ -9,9 +9,10 @@
 // no change, a flip of one of the triangle's edges, a split of one of them at the point of the
 // input (of its curve, for a feature or border edge) nearest its midpoint -- is made on the mesh
 // and followed by the pattern search of the angle optimization over the region's movable
-// vertices; the region's angles under `sliver_angle`, sorted, are then compared with what they
-// were, and the best candidate that wins by `min_gain` is kept (made again), the others taken back
-// (positions restored, flip flipped back, split vertex removed). Constraints: vertices on the input
+// vertices (free ones in their tangent plane, projected onto the input at the end); the region's
+// angles under `sliver_angle`, sorted, are then compared with what they were, and the best
+// candidate that wins by `min_gain` is kept (made again), the others taken back (positions
+// restored, flip flipped back, split vertex removed). Constraints: vertices on the input
 // (feature vertices on their curves); no topology change; a change that adds a crossing face pair
 // near the region is taken back (the search takes back its own moves that would).
 
@@ -221,12 +222,17 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
     ++kept;
     std::vector<vertex_descriptor> searched = region;
     if(made.added != GT::null_vertex()) searched.push_back(made.added);
-    for(face_descriptor g : Poisson_remesh::internal::faces_around(m, searched)) {
-      const halfedge_descriptor hg = halfedge(g, m);
-      const std::array<vertex_descriptor, 3> w = {source(hg, m), target(hg, m), target(next(hg, m), m)};
-      const double a = ctx.min_angle(get(vpm, w[0]), get(vpm, w[1]), get(vpm, w[2]));
-      if(a < sliver) sharp.push_back({a, w});
-    }
+    // (queued in the order they are met from the region, not in that of the descriptors: a
+    // Polyhedron_3's are addresses, and the queue's order decides what is treated first)
+    std::set<face_descriptor> queued;
+    for(vertex_descriptor x : searched)
+      for(halfedge_descriptor hx : CGAL::halfedges_around_target(x, m)) {
+        if(is_border(hx, m) || !queued.insert(face(hx, m)).second) continue;
+        const halfedge_descriptor hg = halfedge(face(hx, m), m);
+        const std::array<vertex_descriptor, 3> w = {source(hg, m), target(hg, m), target(next(hg, m), m)};
+        const double a = ctx.min_angle(get(vpm, w[0]), get(vpm, w[1]), get(vpm, w[2]));
+        if(a < sliver) sharp.push_back({a, w});
+      }
   }
   stats.repair_changes += kept;
   return kept;

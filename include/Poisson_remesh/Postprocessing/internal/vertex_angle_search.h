@@ -44,7 +44,8 @@ namespace internal {
 /// searched (internal/parallel.h), each round at once: the same result as in sequence, for any
 /// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
 /// the number of vertices moved. With `only` (not null; Angle_goal::smallest), the vertices searched
-/// are those of `only`, in its order, at a triangle sharper than `optimized_angle`.
+/// are those of `only`, in its order, at a triangle sharper than `optimized_angle`, the free ones
+/// in their tangent plane, projected once (the local repair's searches).
 template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
@@ -204,7 +205,9 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     if(dirs.empty()) return start;
     // (a bounded number of steps: where gains never stop, however small -- a flat sheet folded
     // onto itself -- the step would never shrink)
-    const bool in_plane = smoothing && c == 0;
+    // (the local repair's searches, `only`, too: each of its candidates searches its region again,
+    // and a projection per trial point costs most where the input's triangles are long and thin)
+    const bool in_plane = (smoothing || only != nullptr) && c == 0;
     double step = (smoothing ? 0.1 : 0.2) * mean;
     // the smoothing polls opportunistically (a compass search): it takes the first direction that
     // gains, starting with the last one that did, within the trials that polling every direction
@@ -239,8 +242,11 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       if(smoothing && trials == 0) break;
     }
     if(in_plane && p != start) {   // onto the input; kept if still better there
-      p = ctx.project_on_surface(p, start);
-      if(!(objective(p) > objective(start))) p = start;
+      const Point_3 t = p;
+      p = ctx.project_on_surface(t, start);
+      // (a repair's search may go farther in the plane: not to the other side of a thin part)
+      if(only != nullptr && CGAL::to_double(CGAL::squared_distance(p, t)) > CGAL::square(0.25 * mean)) p = start;
+      else if(!(objective(p) > objective(start))) p = start;
     }
     return p;
   };
