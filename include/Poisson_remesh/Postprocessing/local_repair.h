@@ -104,12 +104,13 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
 
   // the sharp triangles, by their vertices (a change made for one may remove another), sharpest first
   std::vector<std::pair<double, std::array<vertex_descriptor, 3>>> sharp;
-  for(face_descriptor f : faces(m)) {
+  auto queue_if_sharp = [&](face_descriptor f) {
     const halfedge_descriptor h = halfedge(f, m);
     const std::array<vertex_descriptor, 3> v = {source(h, m), target(h, m), target(next(h, m), m)};
     const double a = ctx.min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2]));
     if(a < sliver) sharp.push_back({a, v});
-  }
+  };
+  for(face_descriptor f : faces(m)) queue_if_sharp(f);
   if(sharp.empty()) return 0;
   std::stable_sort(sharp.begin(), sharp.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
 
@@ -226,13 +227,8 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
     // Polyhedron_3's are addresses, and the queue's order decides what is treated first)
     std::set<face_descriptor> queued;
     for(vertex_descriptor x : searched)
-      for(halfedge_descriptor hx : CGAL::halfedges_around_target(x, m)) {
-        if(is_border(hx, m) || !queued.insert(face(hx, m)).second) continue;
-        const halfedge_descriptor hg = halfedge(face(hx, m), m);
-        const std::array<vertex_descriptor, 3> w = {source(hg, m), target(hg, m), target(next(hg, m), m)};
-        const double a = ctx.min_angle(get(vpm, w[0]), get(vpm, w[1]), get(vpm, w[2]));
-        if(a < sliver) sharp.push_back({a, w});
-      }
+      for(halfedge_descriptor hx : CGAL::halfedges_around_target(x, m))
+        if(!is_border(hx, m) && queued.insert(face(hx, m)).second) queue_if_sharp(face(hx, m));
   }
   stats.repair_changes += kept;
   return kept;

@@ -97,7 +97,7 @@ std::size_t refine_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
         double old = CGAL_PI;
         Vector_3 n(0, 0, 0);
         std::vector<face_descriptor> star;
-        bool closed = false;   // the three neighbours bound a face already (a tetrahedron)
+        bool closed = false;   // the three neighbours bound a face already (four faces closed on themselves)
         for(halfedge_descriptor g : CGAL::halfedges_around_target(x, m)) {
           const Point_3 &P = get(vpm, source(g, m)), &Q = get(vpm, target(next(g, m), m));
           old = std::min(old, ctx.min_angle(P, get(vpm, x), Q));

@@ -478,7 +478,7 @@ public:
     if(feature_at.empty()) {
       make_side(0, 0, true);
       if(m == 3) {
-        // the ring triangle must not already be a face (a tetrahedron-like pocket)
+        // the ring triangle must not already be a face (a pocket of four faces closed on itself)
         const halfedge_descriptor r01 = halfedge(ring[1], ring[0], tm).first;
         if(!is_border(r01, tm) && target(next(r01, tm), tm) == ring[2]) { ++refusals[2]; return false; }
       }
