@@ -260,6 +260,11 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
                            .sampled_hausdorff(!o.full_report)
                            .hausdorff_relative_error_bound(1e-4);
   PR::Labelled_quality_reports reports = {{"input", PR::quality_report<CGAL::Parallel_if_available_tag>(input, np)}};
+  // (the reports against the input reuse its count of crossing pairs, when that count has no
+  // degenerate face's pair with itself in it, instead of searching the input again)
+  const std::size_t input_crossings = reports[0].second.self_intersections_checked && reports[0].second.number_of_degenerate_faces == 0
+                                    ? reports[0].second.number_of_self_intersecting_face_pairs : std::size_t(-1);
+  auto np_against_input = np.reference_self_intersections(input_crossings);
   std::optional<Mesh> peer;   // the peer's remesh, with --compare-peer (for --picture)
   try {
     if(o.method == "poisson") {
@@ -325,15 +330,15 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
       if(run.number_of_merged_samples)
         say << "  note: " << run.number_of_merged_samples
             << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
-      reports.push_back({"output (Poisson)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np)});
+      reports.push_back({"output (Poisson)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np_against_input)});
       if(o.compare_peer) {
         peer.emplace();
         run_peer(*peer);
-        reports.push_back({"peer (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(*peer, input, np)});
+        reports.push_back({"peer (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(*peer, input, np_against_input)});
       }
     } else {
       row.seconds_remesh = run_peer(output);
-      reports.push_back({"output (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np)});
+      reports.push_back({"output (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np_against_input)});
     }
   } catch(const PR::Cancelled& e) {
     return fail(cli::internal_error, e.what());

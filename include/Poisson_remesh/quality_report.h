@@ -580,23 +580,28 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
   return r;
 }
 
-// A sampled one-sided Hausdorff distance from `a` to the surface of `tree` (the sampled Hausdorff
-// of the quality report): the largest distance from a's vertices, edge midpoints and face
-// centroids to it (a lower bound of the true one-sided distance), and how much more the true one
-// can be: the distance to a surface is 1-Lipschitz, and every point of a triangle whose longest
-// edge is l lies within l / (2 sqrt 3) of one of its vertices or edge midpoints (the four
+// A sampled one-sided Hausdorff distance from `a` to the surface of `b` (`tree`: b's faces; the
+// sampled Hausdorff of the quality report): the largest distance from a's vertices, edge midpoints
+// and face centroids to b (a lower bound of the true one-sided distance), and how much more the
+// true one can be: the distance to a surface is 1-Lipschitz, and every point of a triangle whose
+// longest edge is l lies within l / (2 sqrt 3) of one of its vertices or edge midpoints (the four
 // half-size triangles they make each lie within their circumradius, at most their longest edge
 // over sqrt 3, of one of their corners).
-// (A midpoint's or centroid's search starts from the point of the surface nearest one of its
-// vertices, found first: a nearby start that prunes the tree early, for the same distance.)
-// (`ConcurrencyTag`: the queries by TBB's threads, the same figures)
-template <class ConcurrencyTag, class Mesh, class VPM, class Tree>
-std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const Tree& tree)
+// Only the largest distance is wanted, so a midpoint or centroid is searched in the tree only
+// when it could raise it: its distance to the faces of b around the face nearest its first
+// vertex (a few triangles: the ring of that face's corners) bounds its distance to b from above,
+// and the points are searched by decreasing bound until the bound is no more than the largest
+// distance found (the same figure as searching every point, for a fraction of the searches).
+// (`ConcurrencyTag`: the vertices' searches and the bounds by TBB's threads, the same figures)
+template <class ConcurrencyTag, class Mesh, class VPM, class MeshB, class VPMB, class Tree>
+std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const MeshB& b, VPMB vpm_b, const Tree& tree)
 {
   typedef typename Tree::Point Point;
+  typedef typename CGAL::Kernel_traits<Point>::Kernel K;
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   typedef typename boost::graph_traits<Mesh>::edge_descriptor edge_descriptor;
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef typename boost::graph_traits<MeshB>::face_descriptor face_b;
   const std::vector<vertex_descriptor> vs(vertices(a).begin(), vertices(a).end());
   const std::vector<edge_descriptor> es(edges(a).begin(), edges(a).end());
   const std::vector<face_descriptor> fs(faces(a).begin(), faces(a).end());
@@ -605,26 +610,60 @@ std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, co
   // (each element's squared distance in its own slot, the largest taken after: any order of the
   // threads gives the same figure)
   std::vector<Point> nearest(vs.size());
-  std::vector<double> dv(vs.size()), de(es.size()), df(fs.size()), longest(fs.size());
+  std::vector<face_b> nearest_face(vs.size());
+  std::vector<double> dv(vs.size()), longest(fs.size());
   for_each_index<ConcurrencyTag>(vs.size(), [&](std::size_t i) {
     const Point p = get(vpm, vs[i]);
-    nearest[i] = tree.closest_point(p);
+    const auto hit = tree.closest_point_and_primitive(p);
+    nearest[i] = hit.first;
+    nearest_face[i] = hit.second;
     dv[i] = CGAL::to_double(CGAL::squared_distance(p, nearest[i]));
   });
+  // the midpoints and centroids, each with its vertex of a (for the search's start) and the upper
+  // bound of its squared distance to b
+  struct Candidate { Point x; std::size_t vertex; double bound; };
+  std::vector<Candidate> cs(es.size() + fs.size());
+  auto ring_bound = [&](const Point& x, std::size_t v) {
+    double best = CGAL::to_double(CGAL::squared_distance(x, nearest[v]));
+    const face_b f = nearest_face[v];
+    for(auto c : CGAL::vertices_around_face(halfedge(f, b), b))
+      for(face_b g : CGAL::faces_around_target(halfedge(c, b), b)) {
+        if(g == boost::graph_traits<MeshB>::null_face()) continue;
+        const auto h = halfedge(g, b);
+        // (a degenerate triangle is measured as its segments)
+        const typename K::Triangle_3 t(get(vpm_b, source(h, b)), get(vpm_b, target(h, b)), get(vpm_b, target(next(h, b), b)));
+        best = (std::min)(best, CGAL::to_double(CGAL::squared_distance(x, t)));
+      }
+    return best;
+  };
   for_each_index<ConcurrencyTag>(es.size(), [&](std::size_t i) {
     const auto h = halfedge(es[i], a);
-    de[i] = CGAL::to_double(tree.squared_distance(CGAL::midpoint(get(vpm, source(h, a)), get(vpm, target(h, a))), nearest[get(index, source(h, a))]));
+    const std::size_t v = get(index, source(h, a));
+    const Point x = CGAL::midpoint(get(vpm, source(h, a)), get(vpm, target(h, a)));
+    cs[i] = {x, v, ring_bound(x, v)};
   });
   for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
     const auto h = halfedge(fs[i], a);
     const auto p = get(vpm, source(h, a)), q = get(vpm, target(h, a)), r = get(vpm, target(next(h, a), a));
-    df[i] = CGAL::to_double(tree.squared_distance(CGAL::centroid(p, q, r), nearest[get(index, source(h, a))]));
+    const std::size_t v = get(index, source(h, a));
+    const Point x = CGAL::centroid(p, q, r);
+    cs[es.size() + i] = {x, v, ring_bound(x, v)};
     longest[i] = std::max({CGAL::to_double(CGAL::squared_distance(p, q)), CGAL::to_double(CGAL::squared_distance(q, r)),
                            CGAL::to_double(CGAL::squared_distance(r, p))});
   });
   double lower = 0, cover = 0;
-  for(const std::vector<double>* d : {&dv, &de, &df}) for(double x : *d) lower = std::max(lower, x);
+  for(double x : dv) lower = std::max(lower, x);
   for(double x : longest) cover = std::max(cover, x);
+  // (a bound within rounding of the largest distance found cannot raise it by more than rounding)
+  const double rounding = 1 + 1e-12;
+  std::vector<std::size_t> order;
+  for(std::size_t i = 0; i < cs.size(); ++i)
+    if(cs[i].bound > lower * rounding) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cs[i].bound > cs[j].bound || (cs[i].bound == cs[j].bound && i < j); });
+  for(std::size_t i : order) {
+    if(!(cs[i].bound > lower * rounding)) break;
+    lower = std::max(lower, CGAL::to_double(tree.squared_distance(cs[i].x, nearest[cs[i].vertex])));
+  }
   return {std::sqrt(lower), std::sqrt(cover) / (2 * std::sqrt(3.0))};
 }
 
@@ -670,7 +709,11 @@ Quality_report quality_report(const TriangleMesh& tm,
   at the tip (a cone of half-angle a: 2 asin(sin(a) sin 60 degrees)); wedges between sharp edges
   under 30 degrees; there no mesh keeping the corner reaches 30). When self-intersections are
   checked, also the reference's own self-intersecting pairs and tm's pairs away from them
-  (`number_of_self_intersecting_face_pairs_away_from_reference_ones`). `ConcurrencyTag`: as above
+  (`number_of_self_intersecting_face_pairs_away_from_reference_ones`);
+  `reference_self_intersections` (std::size_t; std::size_t(-1), the default: unknown): the reference's own count of
+  self-intersecting pairs of two distinct faces, when the caller has it (from the reference's
+  report, when it has no degenerate face): the reference is then searched only if tm has
+  self-intersecting pairs. `ConcurrencyTag`: as above
   (the sampled Hausdorff distance's queries too; CGAL's bounded-error one runs on one thread:
   its parallel mode needs METIS).
 */
@@ -704,8 +747,9 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     reference_tree.build();
     tm_tree.accelerate_distance_queries();
     reference_tree.accelerate_distance_queries();
-    const auto there = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(tm, vpm, reference_tree);
-    const auto back = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(reference, get_const_property_map(CGAL::vertex_point, reference), tm_tree);
+    const auto rvpm = get_const_property_map(CGAL::vertex_point, reference);
+    const auto there = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(tm, vpm, reference, rvpm, reference_tree);
+    const auto back = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(reference, rvpm, tm, vpm, tm_tree);
     const double h = std::max(there.first, back.first);
     r.hausdorff_absolute = h;
     r.hausdorff = diag > 0 ? h / diag : 0.0;
@@ -719,7 +763,14 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     r.hausdorff_error_bound = rel_bound;
   }
   internal::fill_min_angle_away_from_sharp_corners(tm, vpm, reference, choose_parameter(get_parameter(np, internal_np::sharp_angle), 60.0), r);
-  if(r.self_intersections_checked) internal::fill_self_intersections_away_from_reference_ones<ConcurrencyTag>(tm, vpm, reference, pairs, r);
+  // (the reference's own crossings are searched only when tm has crossings to tell from them, if
+  // the caller knows the reference's count: a second search of the same mesh otherwise)
+  const std::size_t known = choose_parameter(get_parameter(np, internal_np::reference_self_intersections), std::size_t(-1));
+  if(r.self_intersections_checked && pairs.empty() && known != std::size_t(-1)) {
+    r.number_of_reference_self_intersecting_face_pairs = known;
+    r.number_of_self_intersecting_face_pairs_away_from_reference_ones = 0;
+  } else if(r.self_intersections_checked)
+    internal::fill_self_intersections_away_from_reference_ones<ConcurrencyTag>(tm, vpm, reference, pairs, r);
   return r;
 }
 

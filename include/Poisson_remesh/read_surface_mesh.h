@@ -194,17 +194,37 @@ std::size_t count_non_manifold_soup_vertices(PolygonRange& polygons, std::size_t
 }
 
 // Edges shared by more than two polygons: the count and the first such edge.
+// (a sorted vector of the polygons' edges, not a map: the check runs on every input)
 template <class PolygonRange>
 std::size_t count_non_manifold_soup_edges(const PolygonRange& polygons, Soup_edge& first)
 {
-  std::map<Soup_edge, std::size_t> edge_faces;
+  std::vector<Soup_edge> edges;
   for(const auto& poly : polygons)
-    for(std::size_t k = 0; k < poly.size(); ++k)
-      ++edge_faces[make_soup_edge(poly[k], poly[(k + 1) % poly.size()])];
+    for(std::size_t k = 0; k < poly.size(); ++k) edges.push_back(make_soup_edge(poly[k], poly[(k + 1) % poly.size()]));
+  std::sort(edges.begin(), edges.end());
   std::size_t bad = 0;
-  for(const auto& e : edge_faces)
-    if(e.second > 2) { if(bad++ == 0) first = e.first; }
+  for(std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while(j < edges.size() && edges[j] == edges[i]) ++j;
+    if(j - i > 2 && bad++ == 0) first = edges[i];
+    i = j;
+  }
   return bad;
+}
+
+// Does every directed edge (u, v) occur in one polygon at most? On a soup whose edges and vertices
+// are manifold and whose polygons repeat no vertex, that is what CGAL's
+// is_polygon_soup_a_polygon_mesh() still asks: the two polygons of an edge run through it in
+// opposite directions (a consistent orientation). (Checked here with one sort: CGAL's function
+// checks the rest again and was most of the reading time of large meshes.)
+template <class PolygonRange>
+bool soup_is_consistently_oriented(const PolygonRange& polygons)
+{
+  std::vector<Soup_edge> directed;
+  for(const auto& poly : polygons)
+    for(std::size_t k = 0; k < poly.size(); ++k) directed.emplace_back(poly[k], poly[(k + 1) % poly.size()]);
+  std::sort(directed.begin(), directed.end());
+  return std::adjacent_find(directed.begin(), directed.end()) == directed.end();
 }
 
 template <class PolygonRange>
@@ -314,20 +334,21 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
                         quoted + ": " + std::to_string(bad) + " vertices have NaN or infinite coordinates (first: vertex " +
                         std::to_string(first) + ")");
   }
+  std::vector<std::size_t> sorted;   // (a face's vertices, sorted: its storage reused)
   for(std::size_t f = 0; f < polygons.size(); ++f) {
     const auto& poly = polygons[f];
-    const std::string where = quoted + ": face " + std::to_string(f);
+    auto where = [&] { return quoted + ": face " + std::to_string(f); };
     if(poly.size() < 3)
-      throw Input_error(Input_error_code::invalid_face, where + " has " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
+      throw Input_error(Input_error_code::invalid_face, where() + " has " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
     for(std::size_t v : poly)
       if(v >= points.size())
-        throw Input_error(Input_error_code::invalid_face, where + " refers to vertex " + std::to_string(v) +
+        throw Input_error(Input_error_code::invalid_face, where() + " refers to vertex " + std::to_string(v) +
                           " but there are only " + std::to_string(points.size()));
-    std::vector<std::size_t> sorted(poly.begin(), poly.end());
+    sorted.assign(poly.begin(), poly.end());
     std::sort(sorted.begin(), sorted.end());
     auto dup = std::adjacent_find(sorted.begin(), sorted.end());
     if(dup != sorted.end())
-      throw Input_error(Input_error_code::invalid_face, where + " repeats vertex " + std::to_string(*dup));
+      throw Input_error(Input_error_code::invalid_face, where() + " repeats vertex " + std::to_string(*dup));
   }
 
   // points no face uses (common in STL and in scans) would be isolated vertices: dropped, and said
@@ -393,7 +414,8 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
                         quoted + ": " + std::to_string(bad) + " non-manifold vertices (faces around them form several fans), first: vertex " +
                         std::to_string(first));
   }
-  if(!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
+  // (the soup's edges and vertices are manifold here: only the orientation is left to check)
+  if(!internal::soup_is_consistently_oriented(polygons)) {
     const std::size_t before = points.size();
     PMP::orient_polygon_soup(points, polygons);
     if(points.size() != before)

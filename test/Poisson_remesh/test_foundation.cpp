@@ -11,6 +11,9 @@
 #include <Poisson_remesh/sizing.h>
 #include <Poisson_remesh/write_surface_mesh.h>
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -250,6 +253,18 @@ TEST_CASE("quality report finds self-intersections and measures the Hausdorff di
     // a mesh that does not cut itself has none, whatever its reference does
     const PR::Quality_report one = PR::quality_report(analytic::sphere(16, 8).to_mesh<Mesh>(), both);
     CHECK(*one.number_of_self_intersecting_face_pairs_away_from_reference_ones == 0);
+    // the reference's count given beforehand (reference_self_intersections): the same figures,
+    // with or without crossings in the mesh
+    const std::size_t known = r.number_of_self_intersecting_face_pairs;
+    const PR::Quality_report one_known = PR::quality_report(analytic::sphere(16, 8).to_mesh<Mesh>(), both,
+                                                            PR::parameters::reference_self_intersections(known));
+    REQUIRE(one_known.number_of_reference_self_intersecting_face_pairs);
+    CHECK(*one_known.number_of_reference_self_intersecting_face_pairs == known);
+    CHECK(*one_known.number_of_self_intersecting_face_pairs_away_from_reference_ones == 0);
+    const PR::Quality_report three_known = PR::quality_report(u.to_mesh<Mesh>(), both, PR::parameters::reference_self_intersections(known));
+    CHECK(*three_known.number_of_reference_self_intersecting_face_pairs == known);
+    CHECK(*three_known.number_of_self_intersecting_face_pairs_away_from_reference_ones ==
+          *three.number_of_self_intersecting_face_pairs_away_from_reference_ones);
   }
   SECTION("a translated copy is at the translation distance") {
     const Mesh a = analytic::plane(8, 8).to_mesh<Mesh>();
@@ -575,6 +590,13 @@ TEST_CASE("reading accepts imperfect but valid input and says what it did", "[re
     CHECK(rr.reoriented);
     CHECK(CGAL::is_closed(m));
     CHECK(num_faces(m) == 4);
+    // the same tetrahedron consistently oriented (face 1 turned back) is read as it is
+    const std::string consistent = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+    Mesh n;
+    const PR::Read_report rn = PR::read_surface_mesh(write_text(dir / "consistent.off", consistent), n);
+    CHECK(!rn.reoriented);
+    CHECK(CGAL::is_closed(n));
+    CHECK(CGAL::Polygon_mesh_processing::is_outward_oriented(n));
   }
   SECTION("OBJ, ASCII PLY and ASCII STL are read") {
     Mesh a, b, c;
@@ -731,6 +753,45 @@ TEST_CASE("the parallel quality report gives the sequential one's figures", "[re
     CHECK(b.irregular_share == a.irregular_share);
     const PR::Quality_report c = PR::quality_report(m), d = PR::quality_report<CGAL::Parallel_if_available_tag>(m);
     CHECK(d.number_of_self_intersecting_face_pairs == c.number_of_self_intersecting_face_pairs);
+  }
+}
+
+TEST_CASE("the sampled Hausdorff distance is the largest of every sample point's distance", "[report]")
+{
+  // the report searches only the points that could raise the largest distance; here every
+  // vertex, edge midpoint and centroid of both meshes is searched, by brute force in a plain tree
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> Tree;
+  auto largest = [](const Mesh& a, const Mesh& b) {
+    Tree tree(faces(b).first, faces(b).second, b);
+    double d2 = 0;
+    for(auto v : vertices(a)) d2 = std::max(d2, CGAL::to_double(tree.squared_distance(a.point(v))));
+    for(auto e : edges(a))
+      d2 = std::max(d2, CGAL::to_double(tree.squared_distance(CGAL::midpoint(a.point(source(e, a)), a.point(target(e, a))))));
+    for(auto f : faces(a)) {
+      const auto h = halfedge(f, a);
+      d2 = std::max(d2, CGAL::to_double(tree.squared_distance(
+                            CGAL::centroid(a.point(source(h, a)), a.point(target(h, a)), a.point(target(next(h, a), a))))));
+    }
+    return std::sqrt(d2);
+  };
+  // a noisy sphere against the sphere, a coarse sphere against a fine one, an open patch bent
+  const Mesh sphere = analytic::sphere(24, 12).to_mesh<Mesh>(), coarse = analytic::sphere(10, 5).to_mesh<Mesh>();
+  Mesh noisy = sphere;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for(auto v : vertices(noisy)) noisy.point(v) = noisy.point(v) + K::Vector_3(u(rng), u(rng), u(rng));
+  const Mesh plane = analytic::plane(9, 7).to_mesh<Mesh>();
+  Mesh bent = plane;
+  for(auto v : vertices(bent)) { const Point p = bent.point(v); bent.point(v) = Point(p.x(), p.y(), 0.3 * p.x() * p.x() + 0.05 * u(rng)); }
+  const std::vector<std::pair<const Mesh*, const Mesh*>> pairs = {{&noisy, &sphere}, {&coarse, &sphere}, {&bent, &plane}};
+  for(const auto& pair : pairs) {
+    const Mesh& a = *pair.first;
+    const Mesh& b = *pair.second;
+    const auto np = PR::parameters::check_self_intersections(false).sampled_hausdorff(true);
+    for(const PR::Quality_report& r : {PR::quality_report(a, b, np), PR::quality_report<CGAL::Parallel_if_available_tag>(a, b, np)}) {
+      REQUIRE(r.hausdorff_absolute);
+      CHECK(*r.hausdorff_absolute == Approx(std::max(largest(a, b), largest(b, a))).epsilon(1e-9));
+    }
   }
 }
 
