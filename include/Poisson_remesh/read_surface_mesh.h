@@ -193,15 +193,27 @@ std::size_t count_non_manifold_soup_vertices(PolygonRange& polygons, std::size_t
   return count;
 }
 
-// Edges shared by more than two polygons: the count and the first such edge.
-// (a sorted vector of the polygons' edges, not a map: the check runs on every input)
+// The polygons' edges, sorted: as (smaller, larger) vertex pairs, or (with `directed`) in the
+// direction each polygon runs through them. (A sorted vector, not a map: the checks below run on
+// every input.)
 template <class PolygonRange>
-std::size_t count_non_manifold_soup_edges(const PolygonRange& polygons, Soup_edge& first)
+std::vector<Soup_edge> sorted_soup_edges(const PolygonRange& polygons, bool directed)
 {
   std::vector<Soup_edge> edges;
   for(const auto& poly : polygons)
-    for(std::size_t k = 0; k < poly.size(); ++k) edges.push_back(make_soup_edge(poly[k], poly[(k + 1) % poly.size()]));
+    for(std::size_t k = 0; k < poly.size(); ++k) {
+      const std::size_t a = poly[k], b = poly[(k + 1) % poly.size()];
+      edges.push_back(directed ? Soup_edge(a, b) : make_soup_edge(a, b));
+    }
   std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+// Edges shared by more than two polygons: the count and the first such edge.
+template <class PolygonRange>
+std::size_t count_non_manifold_soup_edges(const PolygonRange& polygons, Soup_edge& first)
+{
+  const std::vector<Soup_edge> edges = sorted_soup_edges(polygons, false);
   std::size_t bad = 0;
   for(std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
@@ -213,17 +225,14 @@ std::size_t count_non_manifold_soup_edges(const PolygonRange& polygons, Soup_edg
 }
 
 // Does every directed edge (u, v) occur in one polygon at most? On a soup whose edges and vertices
-// are manifold and whose polygons repeat no vertex, that is what CGAL's
-// is_polygon_soup_a_polygon_mesh() still asks: the two polygons of an edge run through it in
-// opposite directions (a consistent orientation). (Checked here with one sort: CGAL's function
-// checks the rest again and was most of the reading time of large meshes.)
+// are manifold and whose polygons repeat no vertex, that is all CGAL's test of a soup being a
+// polygon mesh still asks: the two polygons of an edge run through it in opposite directions (a
+// consistent orientation). (CGAL's test checks the rest again, and was most of the reading time
+// of large meshes.)
 template <class PolygonRange>
 bool soup_is_consistently_oriented(const PolygonRange& polygons)
 {
-  std::vector<Soup_edge> directed;
-  for(const auto& poly : polygons)
-    for(std::size_t k = 0; k < poly.size(); ++k) directed.emplace_back(poly[k], poly[(k + 1) % poly.size()]);
-  std::sort(directed.begin(), directed.end());
+  const std::vector<Soup_edge> directed = sorted_soup_edges(polygons, true);
   return std::adjacent_find(directed.begin(), directed.end()) == directed.end();
 }
 
