@@ -6,6 +6,7 @@
 // without its operator. The judge (angles, valences, distances) is computed here, apart from the
 // library's own predicates.
 #include "analytic_meshes.h"
+#include "test_support.h"
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
@@ -15,6 +16,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
@@ -636,6 +638,87 @@ TEST_CASE("local self-intersection checks agree with whole-mesh checks", "[opera
 // The fidelity insertions skip the distance queries of points within the tolerance of a point of
 // the mesh (or of the input): found in a grid of cells as large as the tolerance
 // (internal/near_points.h), judged against a scan of every point.
+TEST_CASE("the crossing search finds CGAL's pairs, with its grid and star tests where faces are near-equal", "[operators][intersections]")
+{
+  // The judge is CGAL's self_intersections() itself, on meshes built to cross in every way its
+  // rule distinguishes: faces folded onto a neighbour across an edge (coplanar overlap), faces
+  // sharing a vertex whose star is folded, faces of two sheets that pass through each other, a
+  // zero-area face; and on data meshes (irregular: CGAL's search is taken there).
+  typedef std::pair<Mesh::Face_index, Mesh::Face_index> Pair;
+  auto judge = [](const Mesh& mesh, const std::vector<Mesh::Face_index>& range) {
+    std::vector<Pair> pairs;
+    CGAL::Polygon_mesh_processing::self_intersections(range, mesh, std::back_inserter(pairs));
+    for(Pair& p : pairs) if(p.second < p.first) std::swap(p.first, p.second);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  };
+  std::size_t grid_runs = 0, crossing_grid_runs = 0;
+  auto compare = [&](const Mesh& mesh, std::size_t least) {
+    const std::vector<Mesh::Face_index> all(faces(mesh).begin(), faces(mesh).end());
+    std::vector<Mesh::Face_index> some;   // (two faces of three)
+    for(std::size_t i = 0; i < all.size(); ++i) if(i % 3 != 1) some.push_back(all[i]);
+    const std::vector<Mesh::Face_index>* ranges[2] = {&all, &some};
+    for(const std::vector<Mesh::Face_index>* range : ranges) {
+      bool grid = false;
+      const auto expected = judge(mesh, *range);
+      const auto found = PR::internal::intersecting_face_pairs(mesh, *range, get(CGAL::vertex_point, mesh), std::size_t(-1), &grid);
+      CHECK(found == expected);
+      if(range == &all) CHECK(found.size() >= least);
+#ifdef CGAL_LINKED_WITH_TBB
+      CHECK(PR::internal::intersecting_face_pairs<CGAL::Parallel_tag>(mesh, *range, get(CGAL::vertex_point, mesh)) == found);
+#endif
+      if(grid) { ++grid_runs; if(!found.empty()) ++crossing_grid_runs; }
+      // bounded: that many pairs, each of them one of the judge's
+      if(found.size() > 3) {
+        const auto first = PR::internal::intersecting_face_pairs(mesh, *range, get(CGAL::vertex_point, mesh), 3);
+        CHECK(first.size() == 3);
+        for(const Pair& p : first) CHECK(std::binary_search(expected.begin(), expected.end(), p));
+      }
+    }
+  };
+  // a sphere as it is (no crossing), and with every 29th vertex slid past a neighbour (folded
+  // stars), and with a second sphere through it (crossings of faces far apart on the mesh)
+  const analytic::Soup ball = analytic::sphere(24, 12);
+  Mesh sphere = ball.to_mesh<Mesh>();
+  compare(sphere, 0);
+  Mesh pushed = sphere;
+  std::size_t k = 0;
+  for(V v : vertices(pushed))   // (past a neighbour, its star folded over the neighbour's)
+    if(++k % 29 == 0) pushed.point(v) = pushed.point(v) + 1.6 * (pushed.point(source(halfedge(v, pushed), pushed)) - pushed.point(v));
+  compare(pushed, 10);
+  analytic::Soup two = ball;
+  for(const auto& p : ball.points) two.points.push_back({p[0] + 0.6, p[1] + 0.3, p[2]});
+  for(const auto& t : ball.triangles) two.triangles.push_back({t[0] + ball.points.size(), t[1] + ball.points.size(), t[2] + ball.points.size()});
+  compare(two.to_mesh<Mesh>(), 50);
+  // a flat grid with a vertex slid in the plane past its neighbour (triangles folded onto others
+  // across an edge), and one moved onto the middle of an edge of its star (a zero-area face)
+  Mesh folded = square(8);
+  for(V v : vertices(folded)) {
+    const Point p = folded.point(v);
+    if(std::abs(p.x() - 0.5) < 1e-9 && std::abs(p.y() - 0.5) < 1e-9) folded.point(v) = Point(0.5 + 0.19, 0.5 + 0.02, 0);
+  }
+  compare(folded, 2);
+  Mesh flat = square(8);
+  for(V v : vertices(flat)) {
+    const Point p = flat.point(v);
+    if(std::abs(p.x() - 0.25) < 1e-9 && std::abs(p.y() - 0.25) < 1e-9) {
+      const auto h = halfedge(v, flat);   // (onto the middle of the edge opposite v in one of its faces)
+      const auto g = is_border(h, flat) ? opposite(next(opposite(h, flat), flat), flat) : next(h, flat);
+      flat.point(v) = CGAL::midpoint(flat.point(target(g, flat)), flat.point(target(next(g, flat), flat)));
+    }
+  }
+  compare(flat, 1);
+  // data meshes that cut themselves
+  for(const char* name : {"meshes/bones.off", "meshes/elephant-with-holes.off"}) {
+    Mesh d;
+    REQUIRE(CGAL::IO::read_polygon_mesh(test_support::data_mesh(name), d));
+    compare(d, 100);
+  }
+  // the grid and star tests were what ran on the meshes of near-equal faces, crossings found too
+  CHECK(grid_runs >= 8);
+  CHECK(crossing_grid_runs >= 6);
+}
+
 TEST_CASE("the point grid finds a point within a distance exactly when there is one", "[operators][fidelity]")
 {
   std::mt19937 draw(7);

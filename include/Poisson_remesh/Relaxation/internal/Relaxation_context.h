@@ -13,12 +13,12 @@
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/internal/feature_curves.h>
 #include <Poisson_remesh/internal/parallel.h>
+#include <Poisson_remesh/internal/self_intersections.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/box_intersection_d.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -39,26 +39,13 @@ template <class Mesh>
 using Face_pairs = std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>;
 
 // the intersecting face pairs among the faces of `range` (all of m's by default), each (smaller,
-// larger), sorted; the search stops past twice the face count (a mesh that cuts itself
-// everywhere: folded input). With CGAL::Parallel_tag, CGAL's parallel search; where it stops at
-// the bound (it may return more pairs, and which depends on the threads) the sequential search is
-// run instead, so that the pairs never depend on the number of threads.
+// larger), sorted (internal/self_intersections.h: CGAL's pairs, found with fewer exact tests); the
+// search stops past twice the face count (a mesh that cuts itself everywhere: folded input). The
+// pairs never depend on the number of threads.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 {
-  Face_pairs<Mesh> pairs;
-  const unsigned bound = unsigned(2 * num_faces(m) + 1);
-  bool found = false;
-  if constexpr(is_parallel<ConcurrencyTag>()) {
-    CGAL::Polygon_mesh_processing::self_intersections<CGAL::Parallel_tag>(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
-    found = pairs.size() < bound;
-    if(!found) pairs.clear();
-  }
-  if(!found)
-    CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(pairs), CGAL::parameters::maximum_number(bound));
-  for(auto& fp : pairs) if(fp.second < fp.first) std::swap(fp.first, fp.second);
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return intersecting_face_pairs<ConcurrencyTag>(m, range, get(CGAL::vertex_point, m), 2 * num_faces(m) + 1);
 }
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs<ConcurrencyTag>(m, faces(m)); }

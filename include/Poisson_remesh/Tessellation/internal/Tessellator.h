@@ -12,13 +12,13 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/properties.h>
 #include <Poisson_remesh/internal/memory_free_order.h>
+#include <Poisson_remesh/internal/self_intersections.h>
 
 #include <algorithm>
 #include <array>
@@ -675,9 +675,7 @@ public:
   {
     std::size_t repaired = 0;
     for(std::size_t round = 0; round < rounds; ++round) {
-      std::vector<std::pair<face_descriptor, face_descriptor>> pairs;
-      CGAL::Polygon_mesh_processing::self_intersections(tm, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(vpm)
-                                                            .maximum_number(unsigned(2 * num_faces(tm) + 1)));
+      const auto pairs = Poisson_remesh::internal::intersecting_face_pairs(tm, faces(tm), vpm, 2 * num_faces(tm) + 1);
       if(pairs.empty()) break;
       // a surface that cuts itself everywhere (input faces folded onto each other) has more
       // crossings than flips can mend, at a cost quadratic in them: left alone
