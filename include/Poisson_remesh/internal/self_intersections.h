@@ -20,9 +20,9 @@
 //   (at most twice the box of the face larger than nine tenths of the faces; a larger face is
 //   checked against every box): a face's box is filed under the cell of its centre, and faces whose
 //   boxes meet (their centres are no farther apart than the larger box) lie in the same or adjacent
-//   cells. (CGAL's sweep sorts and scans all the boxes along one axis; on a mesh of
-//   near-equal faces the grid touches fewer boxes.) On faces of very unequal sizes the grid would
-//   crowd, and CGAL's search is run instead.
+//   cells. (CGAL's sweep sorts and scans all the boxes along one axis; on a mesh of near-equal
+//   faces the grid touches fewer boxes.) On faces of very unequal sizes the grid would crowd, and
+//   CGAL's box sweep (box_self_intersection_d) gives the candidates instead.
 // The faces' pairs are the same as CGAL's (the tests compare both on meshes that cut themselves);
 // only the work differs. With CGAL::Parallel_tag the exact tests run in parallel; the pairs and
 // their order do not depend on the number of threads.
@@ -33,7 +33,7 @@
 #include <Poisson_remesh/internal/parallel.h>
 
 #include <CGAL/Bbox_3.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/Dynamic_property_map.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -166,10 +166,11 @@ bool faces_intersect(typename boost::graph_traits<Mesh>::face_descriptor f, type
 
 /// The intersecting pairs among the faces of `range` of the triangle mesh m (points `vpm`), as
 /// CGAL's self_intersections(range, m) finds them, each pair as (smaller, larger), sorted. The
-/// search stops past `bound` pairs (a mesh that cuts itself everywhere); which `bound` pairs are
-/// then returned is fixed by the mesh, not by the threads. Where the faces are far from equal in
+/// search stops at `bound` pairs (a mesh that cuts itself everywhere): then only their number
+/// tells (which they are depends on the order of the search). The pairs never depend on the
+/// number of threads. Where the faces are far from equal in
 /// size (an input mesh, not the relaxation's) the grid would hold too many faces per cell, and
-/// CGAL's own search is run instead (`used_grid`, if given, tells which).
+/// CGAL's box sweep gives the candidate pairs instead (`used_grid`, if given, tells which).
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange, class VPM>
 std::vector<std::pair<typename boost::graph_traits<Mesh>::face_descriptor, typename boost::graph_traits<Mesh>::face_descriptor>>
 intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
@@ -248,26 +249,12 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
     i = j;
   }
 
-  // Too crowded a grid (faces of very unequal sizes) or too many big faces: CGAL's search. (On the
-  // relaxation's meshes a cell holds a few faces and there are no big faces.)
+  // Too crowded a grid (faces of very unequal sizes) or too many big faces: CGAL's box sweep finds
+  // the candidates instead. (On the relaxation's meshes a cell holds a few faces and there are no
+  // big faces.)
   const std::size_t most_crowding = 32 * n, most_big = 8 + n / 64;
-  if(crowding > most_crowding || big.size() > most_big) {
-    out.clear();
-    const unsigned cgal_bound = unsigned((std::min)(bound, std::size_t((std::numeric_limits<unsigned>::max)())));
-    bool found = false;
-    if constexpr(is_parallel<ConcurrencyTag>()) {
-      // (where the parallel search stops at the bound, which pairs it found depends on the
-      // threads: then the sequential search)
-      CGAL::Polygon_mesh_processing::self_intersections<CGAL::Parallel_tag>(range, m, std::back_inserter(out),
-                                                                           CGAL::parameters::vertex_point_map(vpm).maximum_number(cgal_bound));
-      found = out.size() < cgal_bound;
-      if(!found) out.clear();
-    }
-    if(!found)
-      CGAL::Polygon_mesh_processing::self_intersections(range, m, std::back_inserter(out), CGAL::parameters::vertex_point_map(vpm).maximum_number(cgal_bound));
-    return finish();
-  }
-  if(used_grid != nullptr) *used_grid = true;
+  const bool grid = crowding <= most_crowding && big.size() <= most_big;
+  if(used_grid != nullptr) *used_grid = grid;
 
   // which vertices' stars project one-to-one (asked of the corners of the searched faces)
   auto state = get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), m);   // 0: not a corner; else 1 + its place in corner_list
@@ -296,71 +283,93 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
   for(std::size_t i = 0; i < n; ++i)
     for(int k = 0; k < 3; ++k) corner_safe[i][k] = one_to_one[get(state, corners[i][k]) - 1] == 1;
 
-  // the pairs to test exactly: boxes that meet, sharing no vertex whose star projects one-to-one
+  // the pairs to test exactly: boxes that meet, sharing no vertex whose star projects one-to-one;
+  // tested as they are found (a block at a time in parallel with CGAL::Parallel_tag), the search
+  // given up once `bound` pairs intersect (a mesh that cuts itself everywhere: every box meets
+  // every other, and finding them all would be quadratic)
+  struct Bound_reached {};
   std::vector<std::pair<std::uint32_t, std::uint32_t>> candidates;
-  auto consider = [&](std::uint32_t a, std::uint32_t b) {
-    const CGAL::Bbox_3 &x = boxes[a], &y = boxes[b];
-    if(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin()) return;
+  std::vector<std::int8_t> meets;
+  // (in sequence, each pair at once: the bound stops the search at the pair that reaches it)
+  const std::size_t block = is_parallel<ConcurrencyTag>() ? 4096 : 1;
+  auto flush = [&]() {
+    meets.assign(candidates.size(), 0);
+    for_each_index<ConcurrencyTag>(candidates.size(), [&](std::size_t i) {
+      meets[i] = self_intersection_detail::faces_intersect(fs[candidates[i].first], fs[candidates[i].second], m, vpm) ? 1 : 0;
+    }, 16);
+    for(std::size_t i = 0; i < candidates.size() && out.size() < bound; ++i)
+      if(meets[i]) out.emplace_back(fs[candidates[i].first], fs[candidates[i].second]);
+    candidates.clear();
+    if(out.size() >= bound) throw Bound_reached();
+  };
+  auto consider_meeting = [&](std::uint32_t a, std::uint32_t b) {
     for(int k = 0; k < 3; ++k)
       if(corner_safe[a][k])
         for(int l = 0; l < 3; ++l) if(corners[a][k] == corners[b][l]) return;
-    candidates.emplace_back((std::min)(a, b), (std::max)(a, b));
+    candidates.emplace_back(a, b);
+    if(candidates.size() == block) flush();
   };
-  // each cell against itself and its 13 neighbours ahead of it (the other 13 have it ahead), found
-  // in an open-addressing table of the occupied cells
-  std::size_t table_size = 16;
-  while(table_size < 2 * cells.size()) table_size *= 2;
-  const std::uint32_t empty = (std::numeric_limits<std::uint32_t>::max)();
-  std::vector<std::uint32_t> table(table_size, empty);
-  auto slot = [&](std::uint64_t key) { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & (table_size - 1); };
-  for(std::uint32_t c = 0; c < cells.size(); ++c) {
-    std::size_t s = slot(cells[c].key);
-    while(table[s] != empty) s = (s + 1) & (table_size - 1);
-    table[s] = c;
-  }
-  auto find = [&](std::uint64_t key) -> const Cell* {
-    for(std::size_t s = slot(key);; s = (s + 1) & (table_size - 1)) {
-      if(table[s] == empty) return nullptr;
-      if(cells[table[s]].key == key) return &cells[table[s]];
-    }
+  auto consider = [&](std::uint32_t a, std::uint32_t b) {
+    const CGAL::Bbox_3 &x = boxes[a], &y = boxes[b];
+    if(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin()) return;
+    consider_meeting(a, b);
   };
-  static const int ahead[13][3] = {{1, 0, 0}, {1, 1, 0},  {1, -1, 0}, {0, 1, 0},  {1, 0, 1},   {1, 1, 1}, {1, -1, 1},
-                                   {0, 1, 1}, {0, 0, 1},  {-1, 1, 1}, {-1, 0, 1}, {-1, -1, 1}, {0, -1, 1}};
-  const std::uint64_t mask = (std::uint64_t(1) << 21) - 1;
-  for(const Cell& c : cells) {
-    for(std::uint32_t i = c.first; i < c.end; ++i)
-      for(std::uint32_t j = i + 1; j < c.end; ++j) consider(filed[i].second, filed[j].second);
-    const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
-    for(const auto& d : ahead) {
-      const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
-      const Cell* other = find(key);
-      if(other == nullptr) continue;
-      for(std::uint32_t i = c.first; i < c.end; ++i)
-        for(std::uint32_t j = other->first; j < other->end; ++j) consider(filed[i].second, filed[j].second);
+  try {
+    if(!grid) {
+      typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS> Box;
+      std::vector<Box> sweep_boxes;
+      sweep_boxes.reserve(n);
+      for(std::uint32_t i = 0; i < n; ++i) sweep_boxes.emplace_back(boxes[i], i);
+      std::vector<const Box*> sweep;   // (pointers: the sweep reorders them, the boxes keep their addresses, their ids)
+      for(const Box& b : sweep_boxes) sweep.push_back(&b);
+      CGAL::box_self_intersection_d<CGAL::Sequential_tag>(sweep.begin(), sweep.end(), [&](const Box* a, const Box* b) { consider_meeting(a->info(), b->info()); },
+                                                         std::ptrdiff_t(2000));
+    } else {
+      // each cell against itself and its 13 neighbours ahead of it (the other 13 have it ahead), found
+      // in an open-addressing table of the occupied cells
+      std::size_t table_size = 16;
+      while(table_size < 2 * cells.size()) table_size *= 2;
+      const std::uint32_t empty = (std::numeric_limits<std::uint32_t>::max)();
+      std::vector<std::uint32_t> table(table_size, empty);
+      auto slot = [&](std::uint64_t key) { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & (table_size - 1); };
+      for(std::uint32_t c = 0; c < cells.size(); ++c) {
+        std::size_t s = slot(cells[c].key);
+        while(table[s] != empty) s = (s + 1) & (table_size - 1);
+        table[s] = c;
+      }
+      auto find = [&](std::uint64_t key) -> const Cell* {
+        for(std::size_t s = slot(key);; s = (s + 1) & (table_size - 1)) {
+          if(table[s] == empty) return nullptr;
+          if(cells[table[s]].key == key) return &cells[table[s]];
+        }
+      };
+      static const int ahead[13][3] = {{1, 0, 0}, {1, 1, 0},  {1, -1, 0}, {0, 1, 0},  {1, 0, 1},   {1, 1, 1}, {1, -1, 1},
+                                       {0, 1, 1}, {0, 0, 1},  {-1, 1, 1}, {-1, 0, 1}, {-1, -1, 1}, {0, -1, 1}};
+      const std::uint64_t mask = (std::uint64_t(1) << 21) - 1;
+      for(const Cell& c : cells) {
+        for(std::uint32_t i = c.first; i < c.end; ++i)
+          for(std::uint32_t j = i + 1; j < c.end; ++j) consider(filed[i].second, filed[j].second);
+        const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
+        for(const auto& d : ahead) {
+          const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
+          const Cell* other = find(key);
+          if(other == nullptr) continue;
+          for(std::uint32_t i = c.first; i < c.end; ++i)
+            for(std::uint32_t j = other->first; j < other->end; ++j) consider(filed[i].second, filed[j].second);
+        }
+      }
+      // the few big faces against every box (each big pair once)
+      for(std::size_t k = 0; k < big.size(); ++k) {
+        for(const auto& x : filed) consider(big[k], x.second);
+        for(std::size_t l = k + 1; l < big.size(); ++l) consider(big[k], big[l]);
+      }
     }
-  }
-  // the few big faces against every box (each big pair once)
-  for(std::size_t k = 0; k < big.size(); ++k) {
-    for(const auto& x : filed) consider(big[k], x.second);
-    for(std::size_t l = k + 1; l < big.size(); ++l) consider(big[k], big[l]);
-  }
 
-  // the exact tests, in a fixed order; a block at a time (past the bound, no more blocks)
-  std::sort(candidates.begin(), candidates.end());
-  std::vector<std::int8_t> meets;
-  const std::size_t block = 4096;
-  for(std::size_t first = 0; first < candidates.size() && out.size() < bound; first += block) {
-    const std::size_t count = (std::min)(block, candidates.size() - first);
-    meets.assign(count, 0);
-    for_each_index<ConcurrencyTag>(count, [&](std::size_t i) {
-      const auto& c = candidates[first + i];
-      meets[i] = self_intersection_detail::faces_intersect(fs[c.first], fs[c.second], m, vpm) ? 1 : 0;
-    }, 16);
-    for(std::size_t i = 0; i < count && out.size() < bound; ++i)
-      if(meets[i]) out.emplace_back(fs[candidates[first + i].first], fs[candidates[first + i].second]);
-  }
+    flush();
+  } catch(const Bound_reached&) {}
   return finish();
 }
+
 
 } // namespace internal
 } // namespace Poisson_remesh
