@@ -325,8 +325,9 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       CGAL::box_self_intersection_d<CGAL::Sequential_tag>(sweep.begin(), sweep.end(), [&](const Box* a, const Box* b) { consider_meeting(a->info(), b->info()); },
                                                          std::ptrdiff_t(2000));
     } else {
-      // each cell against itself and its 13 neighbours ahead of it (the other 13 have it ahead), found
-      // in an open-addressing table of the occupied cells
+      // each cell against itself and one neighbour of each opposite pair (13 of its 26: the
+      // opposite one takes this cell in its own turn), found in an open-addressing table of the
+      // occupied cells
       std::size_t table_size = 16;
       while(table_size < 2 * cells.size()) table_size *= 2;
       const std::uint32_t empty = (std::numeric_limits<std::uint32_t>::max)();
@@ -343,14 +344,14 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
           if(cells[table[s]].key == key) return &cells[table[s]];
         }
       };
-      static const int ahead[13][3] = {{1, 0, 0}, {1, 1, 0},  {1, -1, 0}, {0, 1, 0},  {1, 0, 1},   {1, 1, 1}, {1, -1, 1},
-                                       {0, 1, 1}, {0, 0, 1},  {-1, 1, 1}, {-1, 0, 1}, {-1, -1, 1}, {0, -1, 1}};
+      static const int one_of_each_pair[13][3] = {{1, 0, 0}, {1, 1, 0},  {1, -1, 0}, {0, 1, 0},  {1, 0, 1},   {1, 1, 1}, {1, -1, 1},
+                                                  {0, 1, 1}, {0, 0, 1},  {-1, 1, 1}, {-1, 0, 1}, {-1, -1, 1}, {0, -1, 1}};
       const std::uint64_t mask = (std::uint64_t(1) << 21) - 1;
       for(const Cell& c : cells) {
         for(std::uint32_t i = c.first; i < c.end; ++i)
           for(std::uint32_t j = i + 1; j < c.end; ++j) consider(filed[i].second, filed[j].second);
         const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
-        for(const auto& d : ahead) {
+        for(const auto& d : one_of_each_pair) {
           const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
           const Cell* other = find(key);
           if(other == nullptr) continue;
