@@ -234,10 +234,9 @@ int corner_vertex_index(const Mesh& m, face_descriptor f, int i)
   return int(source(h, m));
 }
 
-void check_developable(const Developable& d, const Face_location& src, double R)
+// the distances of `oracle`, propagated from `src` to R, against the closed form
+void check_distances(const Exact& oracle, const Developable& d, const Face_location& src, double R)
 {
-  Exact oracle(d.mesh);
-  oracle.propagate(src, R);
   const std::array<double, 2> s2 = unroll_location(d, src);
   std::size_t n = 0;
   double max_rel = 0.;
@@ -267,6 +266,13 @@ void check_developable(const Developable& d, const Face_location& src, double R)
   std::cout << "[analytic] " << n << " vertices / points within R, max relative error " << max_rel << "\n";
   CHECK(n > 50);
   CHECK(max_rel < 1e-9);
+}
+
+void check_developable(const Developable& d, const Face_location& src, double R)
+{
+  Exact oracle(d.mesh);
+  oracle.propagate(src, R);
+  check_distances(oracle, d, src, R);
 }
 
 // Jittered, randomly triangulated planar grid of [0,1]^2.
@@ -433,6 +439,36 @@ TEST_CASE("exact geodesic distance on a cone equals the distance in the unrolled
   std::mt19937 rng(9);
   check_developable(d, face_source(d.mesh, rng), 1.2);
   check_developable(d, vertex_source(d.mesh, rng), 1.2);
+}
+
+TEST_CASE("copies of an exact oracle propagate on their own", "[geodesic][exact][analytic]")
+{
+  // (the copies share the oracle's index-based copy of the mesh, read-only; each keeps its own
+  // propagation: the sampler propagates with one copy while its classifier asks another)
+  Developable d = make_plane(20);
+  std::mt19937 rng(13);
+  const Face_location s1 = face_source(d.mesh, rng), s2 = vertex_source(d.mesh, rng), s3 = edge_source(d.mesh, rng);
+  Exact a(d.mesh);
+  a.propagate(s1, 0.35);
+  Exact b = a;   // (a copy made after a propagation)
+  b.propagate(s2, 0.3);
+  Exact c(b);
+  c.propagate(s3, 0.25);
+  a.propagate(s1, 0.35);   // (again: the other copies' propagations left nothing behind in a)
+  check_distances(a, d, s1, 0.35);
+  check_distances(b, d, s2, 0.3);
+  check_distances(c, d, s3, 0.25);
+  // a copy's iso-curve is its own source's
+  const std::array<double, 2> u2 = unroll_location(d, s2);
+  std::size_t points = 0;
+  for(const auto& chain : b.iso_curve(0.2))
+    for(const auto& arc : chain.arcs)
+      for(double t : {0., 0.5, 1.}) {
+        const Face_location x = {arc.face, arc.barycentric(t)};
+        CHECK(std::abs(d.distance(u2, unroll_location(d, x)) - 0.2) < 1e-9);
+        ++points;
+      }
+  CHECK(points > 10);
 }
 
 // ---------------------------------------------------------------------------

@@ -71,6 +71,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -164,19 +165,19 @@ public:
   explicit Exact_geodesic_oracle(const TriangleMesh& tm) : Exact_geodesic_oracle(tm, get(CGAL::vertex_point, tm)) {}
 
   /// The same with the points of `vpm`.
-  Exact_geodesic_oracle(const TriangleMesh& tm, VertexPointMap vpm) : m_tm(tm), m_vpm(vpm), m(tm, vpm)
+  Exact_geodesic_oracle(const TriangleMesh& tm, VertexPointMap vpm) : m_tm(tm), m_vpm(vpm), m(std::make_shared<const Mesh>(tm, vpm))
   {
-    m_dist.assign(m.number_of_vertices(), internal::kInf);
-    m_pseudo_done.assign(m.number_of_vertices(), internal::kInf);
-    m_edge_windows.resize(m.num_edges);
-    m_edge_touched.assign(m.num_edges, 0);
-    m_tol = 1e-13 * m.diag;
+    m_dist.assign(m->number_of_vertices(), internal::kInf);
+    m_pseudo_done.assign(m->number_of_vertices(), internal::kInf);
+    m_edge_windows.resize(m->num_edges);
+    m_edge_touched.assign(m->num_edges, 0);
+    m_tol = 1e-13 * m->diag;
   }
 
   /// the mesh (it must outlive the oracle and stay unchanged)
   const TriangleMesh& mesh() const { return m_tm; }
   /// diagonal of the bounding box of the mesh
-  double bbox_diagonal() const { return m.diag; }
+  double bbox_diagonal() const { return m->diag; }
   /// radius of the last propagation (the `report_radius` of predicate-driven propagations)
   double radius() const { return m_radius; }
 
@@ -214,7 +215,7 @@ public:
   /// Exact geodesic distance of vertex `v`, or nullopt if not reached within the radius.  O(1).
   std::optional<double> distance(vertex_descriptor v) const
   {
-    const double d = m_dist[get(m.vim, v)];
+    const double d = m_dist[get(m->vim, v)];
     if(d <= m_radius) return d;
     return std::nullopt;
   }
@@ -223,10 +224,10 @@ public:
   /// O(number of windows on the edges of the face).
   std::optional<double> distance(const Face_location& p) const
   {
-    const int f = int(get(m.fim, p.first));
+    const int f = int(get(m->fim, p.first));
     std::array<double, 3> b = p.second;
     internal::snap_barycentric(b);
-    const double d = point_distance(f, m.bary_to_2(f, b));
+    const double d = point_distance(f, m->bary_to_2(f, b));
     // points of the iso-curve at the radius itself must be reported despite rounding
     if(d <= m_radius * (1. + 1e-9) + m_tol) return d;
     return std::nullopt;
@@ -238,7 +239,7 @@ public:
   OutputIterator reached_vertices(OutputIterator out) const
   {
     for(int v : m_touched_vertices)
-      if(m_dist[v] <= m_radius) *out++ = std::make_pair(m.vertex_of[v], m_dist[v]);
+      if(m_dist[v] <= m_radius) *out++ = std::make_pair(m->vertex_of[v], m_dist[v]);
     return out;
   }
 
@@ -263,9 +264,9 @@ public:
   {
     std::vector<Iso_arc> arcs;
     extract_iso_arcs([&](int f) {
-      const double rv[3] = {vertex_radius(m.vertex_of[m.fv[3 * f]]), vertex_radius(m.vertex_of[m.fv[3 * f + 1]]),
-                            vertex_radius(m.vertex_of[m.fv[3 * f + 2]])};
-      const double l0 = m.flayout[3 * f], x2 = m.flayout[3 * f + 1], y2 = m.flayout[3 * f + 2];
+      const double rv[3] = {vertex_radius(m->vertex_of[m->fv[3 * f]]), vertex_radius(m->vertex_of[m->fv[3 * f + 1]]),
+                            vertex_radius(m->vertex_of[m->fv[3 * f + 2]])};
+      const double l0 = m->flayout[3 * f], x2 = m->flayout[3 * f + 1], y2 = m->flayout[3 * f + 2];
       Vec2 a{0., 0.};
       if(l0 > 0. && y2 > 0.) {
         a.x = (rv[1] - rv[0]) / l0;
@@ -351,7 +352,7 @@ private:
     if(!(d < m_dist[v])) return;
     if(m_dist[v] == internal::kInf) m_touched_vertices.push_back(v);
     m_dist[v] = d;
-    if(m.pseudo[v] && d <= m_radius) push(d, -(v + 1));
+    if(m->pseudo[v] && d <= m_radius) push(d, -(v + 1));
   }
 
   static double window_min_distance(const Window& w)
@@ -369,38 +370,38 @@ private:
   template <class Stop>
   void initialize_windows_from_source(const Face_location& source, Stop& stop)
   {
-    const int f = int(get(m.fim, source.first));
+    const int f = int(get(m->fim, source.first));
     std::array<double, 3> b = source.second;
     const int nz = internal::snap_barycentric(b);
     if(nz == 1)
     {
       const int i = (b[0] > 0.) ? 0 : (b[1] > 0.) ? 1 : 2;
-      const int v = m.fv[3 * f + i];
+      const int v = m->fv[3 * f + i];
       update_vertex(v, 0.);
       m_pseudo_done[v] = 0.;
       create_pseudo_source(v, 0., stop);
       return;
     }
-    const Vec2 q = m.bary_to_2(f, b);
+    const Vec2 q = m->bary_to_2(f, b);
     m_source_faces.push_back({f, q});
     if(nz == 2)
     {
       // on edge k where b[k+2] == 0: also the face across that edge
       const int k = (b[2] == 0.) ? 0 : (b[0] == 0.) ? 1 : 2;
-      const int so = m.fadj[3 * f + k];
+      const int so = m->fadj[3 * f + k];
       if(so >= 0)
       {
         const int g = so / 3, ko = so % 3;
-        const double L = m.edge_length(3 * f + k);
-        const Vec2 qe = m.to_edge_frame(f, k, q);
-        const Vec2 qg = m.from_edge_frame(g, ko, Vec2{L - qe.x, 0.});
+        const double L = m->edge_length(3 * f + k);
+        const Vec2 qe = m->to_edge_frame(f, k, q);
+        const Vec2 qg = m->from_edge_frame(g, ko, Vec2{L - qe.x, 0.});
         m_source_faces.push_back({g, qg});
       }
     }
     for(const auto& sf : m_source_faces)
     {
       const int g = sf.first;
-      for(int i = 0; i < 3; ++i) update_vertex(m.fv[3 * g + i], internal::norm(sf.second - m.corner_2(g, i)));
+      for(int i = 0; i < 3; ++i) update_vertex(m->fv[3 * g + i], internal::norm(sf.second - m->corner_2(g, i)));
     }
     const std::size_t nsf = m_source_faces.size();
     for(std::size_t i = 0; i < nsf; ++i)
@@ -409,8 +410,8 @@ private:
       const Vec2 q2 = m_source_faces[i].second;
       for(int k = 0; k < 3; ++k)
       {
-        const Vec2 qe = m.to_edge_frame(g, k, q2);
-        if(nz == 2 && !(qe.y > 1e-14 * m.edge_length(3 * g + k))) continue;  // the source edge itself
+        const Vec2 qe = m->to_edge_frame(g, k, q2);
+        if(nz == 2 && !(qe.y > 1e-14 * m->edge_length(3 * g + k))) continue;  // the source edge itself
         emit_window_through_edge(3 * g + k, qe, 0., stop);
       }
     }
@@ -421,9 +422,9 @@ private:
   template <class Stop>
   void emit_window_through_edge(int s_slot, Vec2 s, double sigma, Stop& stop)
   {
-    const int t = m.fadj[s_slot];
+    const int t = m->fadj[s_slot];
     if(t < 0) return;  // border edge: nothing beyond
-    const double L = m.edge_length(s_slot);
+    const double L = m->edge_length(s_slot);
     Window w;
     w.b0 = 0.;
     w.b1 = L;
@@ -440,14 +441,14 @@ private:
   void create_pseudo_source(int v, double d, Stop& stop)
   {
     m_pseudo_done[v] = d;
-    for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i)
+    for(int i = m->vf_start[v]; i < m->vf_start[v + 1]; ++i)
     {
-      const int c = m.vf_list[i];  // slot 3f + corner of v
+      const int c = m->vf_list[i];  // slot 3f + corner of v
       const int f = c / 3, j = c % 3;
-      update_vertex(m.fv[3 * f + (j + 1) % 3], d + m.edge_length(c));
-      update_vertex(m.fv[3 * f + (j + 2) % 3], d + m.edge_length(3 * f + (j + 2) % 3));
+      update_vertex(m->fv[3 * f + (j + 1) % 3], d + m->edge_length(c));
+      update_vertex(m->fv[3 * f + (j + 2) % 3], d + m->edge_length(3 * f + (j + 2) % 3));
       const int k = (j + 1) % 3;  // opposite edge; its apex is v
-      emit_window_through_edge(3 * f + k, m.apex[3 * f + k], d, stop);
+      emit_window_through_edge(3 * f + k, m->apex[3 * f + k], d, stop);
     }
   }
 
@@ -458,18 +459,18 @@ private:
   {
     const Window w = m_windows[id];
     const int s = w.slot, f = s / 3, k = s % 3;
-    const double L = m.edge_length(s);
-    const Vec2 C = m.apex[s];
+    const double L = m->edge_length(s);
+    const Vec2 C = m->apex[s];
     const Vec2 S{w.sx, w.sy};
-    const int vC = m.fv[3 * f + (k + 2) % 3];
+    const int vC = m->fv[3 * f + (k + 2) % 3];
     // abscissa where the ray from S to C crosses AB
     const double den = C.y - S.y;
     const double xC = (den > 0.) ? S.x + (C.x - S.x) * (-S.y) / den : S.x;
     const double tolx = 1e-12 * L;
     if(xC >= w.b0 - tolx && xC <= w.b1 + tolx) update_vertex(vC, w.sigma + internal::norm(C - S));
 
-    const double lAC = m.edge_length(3 * f + (k + 2) % 3);
-    const double lBC = m.edge_length(3 * f + (k + 1) % 3);
+    const double lAC = m->edge_length(3 * f + (k + 2) % 3);
+    const double lBC = m->edge_length(3 * f + (k + 1) % 3);
     // left part: rays through [b0, min(b1,xC)] hit AC; new window on the twin of C->A (frame origin A, x along A->C)
     if(w.b0 < xC && lAC > 0.)
     {
@@ -512,8 +513,8 @@ private:
   template <class Stop>
   void make_child(int from_slot, double a, double b, Vec2 sn, double sigma, Stop& stop)
   {
-    const int t = m.fadj[from_slot];
-    const double L = m.edge_length(from_slot);
+    const int t = m->fadj[from_slot];
+    const double L = m->edge_length(from_slot);
     if(!(b - a > 0.)) return;  // zero-width windows carry nothing (vertices are updated directly)
     if(t < 0) return;  // border: endpoint distances were already recorded through the face
     Window w;
@@ -535,12 +536,12 @@ private:
   void trim_and_insert_window(const Window& w, Stop& stop)
   {
     const int s = w.slot, f = s / 3, k = s % 3;
-    const double L = m.edge_length(s);
+    const double L = m->edge_length(s);
     const double tol_x = 1e-12 * L;
     const internal::Edge_distance_function Dw{w.sx, w.sy * w.sy, w.sigma};
     // endpoint distances (a window covering a vertex gives it an upper bound)
-    if(w.b0 <= tol_x) update_vertex(m.fv[s], Dw(0.));
-    if(w.b1 >= L - tol_x) update_vertex(m.fv[3 * f + (k + 1) % 3], Dw(L));
+    if(w.b0 <= tol_x) update_vertex(m->fv[s], Dw(0.));
+    if(w.b1 >= L - tol_x) update_vertex(m->fv[3 * f + (k + 1) % 3], Dw(L));
     // (trimming only shrinks a window: farther than the bound before it, farther after it)
     if(window_min_distance(w) > m_discard_beyond) return;
 
@@ -558,9 +559,9 @@ private:
                                 internal::Interval_set& pieces) const
   {
     const int s = w.slot, f = s / 3, k = s % 3;
-    const double L = m.edge_length(s);
-    const int vA = m.fv[s], vB = m.fv[3 * f + (k + 1) % 3], vC = m.fv[3 * f + (k + 2) % 3];
-    const Vec2 C = m.apex[s];
+    const double L = m->edge_length(s);
+    const int vA = m->fv[s], vB = m->fv[3 * f + (k + 1) % 3], vC = m->fv[3 * f + (k + 2) % 3];
+    const Vec2 C = m->apex[s];
     // a vertex can take a part of the window only where it is closer by more than the tolerance;
     // it cannot when even its nearest point of the edge line is not closer than the window's
     // farthest point (the window's distance is convex along the edge: largest at an end)
@@ -571,11 +572,11 @@ private:
     subtract(internal::Edge_distance_function{0., 0., m_dist[vA]});
     subtract(internal::Edge_distance_function{L, 0., m_dist[vB]});
     subtract(internal::Edge_distance_function{C.x, C.y * C.y, m_dist[vC]});
-    const int t = m.fadj[s];
+    const int t = m->fadj[s];
     if(t >= 0)
     {
-      const int vD = m.fv[3 * (t / 3) + (t % 3 + 2) % 3];
-      const Vec2 D = m.apex[t];
+      const int vD = m->fv[3 * (t / 3) + (t % 3 + 2) % 3];
+      const Vec2 D = m->apex[t];
       subtract(internal::Edge_distance_function{L - D.x, D.y * D.y, m_dist[vD]});
     }
   }
@@ -590,8 +591,8 @@ private:
                                  internal::Interval_set& pieces)
   {
     const int s = w.slot;
-    const double L = m.edge_length(s);
-    const int e = m.fedge[s];
+    const double L = m->edge_length(s);
+    const int e = m->fedge[s];
     std::vector<int>& list = m_edge_windows[e];
     m_new_list.clear();
     for(std::size_t i = 0; i < list.size(); ++i)
@@ -663,7 +664,7 @@ private:
   void store_window_pieces(const Window& w, const internal::Interval_set& pieces, Stop& stop)
   {
     const int s = w.slot;
-    const int e = m.fedge[s];
+    const int e = m->fedge[s];
     if(!m_edge_touched[e])
     {
       m_edge_touched[e] = 1;
@@ -709,16 +710,16 @@ private:
   Window_geometry window_geometry(const Window& w) const
   {
     Window_geometry g;
-    g.halfedge = m.slot_halfedge[w.slot];
+    g.halfedge = m->slot_halfedge[w.slot];
     g.source = {{w.sx, w.sy}};
     g.sigma = w.sigma;
     g.b0 = w.b0;
     g.b1 = w.b1;
-    const double L = m.edge_length(w.slot);
-    const int a = m.fv[w.slot], b = m.fv[Mesh::next_slot(w.slot)];
+    const double L = m->edge_length(w.slot);
+    const int a = m->fv[w.slot], b = m->fv[Mesh::next_slot(w.slot)];
     const double t0 = (L > 0.) ? w.b0 / L : 0., t1 = (L > 0.) ? w.b1 / L : 0.;
-    const auto& pa = m.pos[a];
-    const auto& pb = m.pos[b];
+    const auto& pa = m->pos[a];
+    const auto& pb = m->pos[b];
     g.p0 = Point_3(pa[0] + t0 * (pb[0] - pa[0]), pa[1] + t0 * (pb[1] - pa[1]), pa[2] + t0 * (pb[2] - pa[2]));
     g.p1 = Point_3(pa[0] + t1 * (pb[0] - pa[0]), pa[1] + t1 * (pb[1] - pa[1]), pa[2] + t1 * (pb[2] - pa[2]));
     g.min_distance = window_min_distance(w);
@@ -750,10 +751,10 @@ private:
     for(int k = 0; k < 3; ++k)
     {
       const int s = 3 * f + k;
-      const std::vector<int>& list = m_edge_windows[m.fedge[s]];
+      const std::vector<int>& list = m_edge_windows[m->fedge[s]];
       if(list.empty()) continue;
-      const Vec2 qk = m.to_edge_frame(f, k, q);
-      const double L = m.edge_length(s);
+      const Vec2 qk = m->to_edge_frame(f, k, q);
+      const double L = m->edge_length(s);
       for(int id : list)
       {
         const Window& w = m_windows[id];
@@ -762,8 +763,8 @@ private:
     }
     for(int i = 0; i < 3; ++i)
     {
-      const double dv = m_dist[m.fv[3 * f + i]];
-      if(dv < internal::kInf) best = (std::min)(best, dv + internal::norm(q - m.corner_2(f, i)));
+      const double dv = m_dist[m->fv[3 * f + i]];
+      if(dv < internal::kInf) best = (std::min)(best, dv + internal::norm(q - m->corner_2(f, i)));
     }
     for(const auto& sf : m_source_faces)
       if(sf.first == f) best = (std::min)(best, internal::norm(q - sf.second));
@@ -813,7 +814,7 @@ private:
   bool inside_face(int f, Vec2 p) const
   {
     for(int k = 0; k < 3; ++k)
-      if(m.to_edge_frame(f, k, p).y < -1e-9 * m.edge_length(3 * f + k)) return false;
+      if(m->to_edge_frame(f, k, p).y < -1e-9 * m->edge_length(3 * f + k)) return false;
     return true;
   }
 
@@ -933,7 +934,7 @@ private:
   void collect_generators(int f, double R, std::vector<Generator>& gens) const
   {
     gens.clear();
-    const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+    const Vec2 P[3] = {m->corner_2(f, 0), m->corner_2(f, 1), m->corner_2(f, 2)};
     auto add = [&](const Generator& g) {
       const double reach = R - g.sigma;
       if(reach > 0. && squared_distance_to_triangle(P, g.c) < reach * reach) gens.push_back(g);
@@ -941,7 +942,7 @@ private:
     for(int k = 0; k < 3; ++k)
     {
       const int s = 3 * f + k;
-      const std::vector<int>& list = m_edge_windows[m.fedge[s]];
+      const std::vector<int>& list = m_edge_windows[m->fedge[s]];
       if(list.empty()) continue;
       const Vec2 eo = P[k], d = P[(k + 1) % 3] - P[k];
       const double L = internal::norm(d);
@@ -951,7 +952,7 @@ private:
         const Window& w = m_windows[id];
         if(w.slot != s || !(w.sigma < R) || window_min_distance(w) > R) continue;
         const Vec2 c{eo.x + w.sx * eu.x - w.sy * eu.y, eo.y + w.sx * eu.y + w.sy * eu.x};
-        add(Generator{c, w.sigma, &w, eo, eu, m.edge_length(s)});
+        add(Generator{c, w.sigma, &w, eo, eu, m->edge_length(s)});
       }
     }
     for(const auto& sf : m_source_faces)
@@ -961,9 +962,9 @@ private:
     // so it would only add breakpoints.
     for(int i = 0; i < 3; ++i)
     {
-      const int v = m.fv[3 * f + i];
+      const int v = m->fv[3 * f + i];
       const double dv = m_dist[v];
-      if(dv < R && (m.pseudo[v] || dv == 0.)) add(Generator{P[i], dv, nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
+      if(dv < R && (m->pseudo[v] || dv == 0.)) add(Generator{P[i], dv, nullptr, Vec2{0., 0.}, Vec2{1., 0.}, 0.});
     }
   }
 
@@ -984,8 +985,8 @@ private:
     thread_local std::vector<int> faces_to_visit;
     faces_to_visit.clear();
     for(int v : m_touched_vertices)
-      if(m.pseudo[v] || m_dist[v] == 0.)
-        for(int i = m.vf_start[v]; i < m.vf_start[v + 1]; ++i) faces_to_visit.push_back(m.vf_list[i] / 3);
+      if(m->pseudo[v] || m_dist[v] == 0.)
+        for(int i = m->vf_start[v]; i < m->vf_start[v + 1]; ++i) faces_to_visit.push_back(m->vf_list[i] / 3);
     for(int e : m_touched_edges)
       for(int id : m_edge_windows[e]) faces_to_visit.push_back(m_windows[id].slot / 3);
     for(const auto& sf : m_source_faces) faces_to_visit.push_back(sf.first);
@@ -997,7 +998,7 @@ private:
     thread_local std::vector<std::pair<double, double> > kept;
     for(int f : faces_to_visit)
     {
-      const Vec2 P[3] = {m.corner_2(f, 0), m.corner_2(f, 1), m.corner_2(f, 2)};
+      const Vec2 P[3] = {m->corner_2(f, 0), m->corner_2(f, 1), m->corner_2(f, 2)};
       const Face_level level = level_of_face(f);
       const bool conic = level.a.x != 0. || level.a.y != 0.;
       double Lmin = internal::kInf, Lmax = -internal::kInf;
@@ -1006,7 +1007,7 @@ private:
         Lmin = (std::min)(Lmin, level.at(P[i]));
         Lmax = (std::max)(Lmax, level.at(P[i]));
       }
-      const double tie = 1e-11 * (std::max)(Lmax, m.diag * 1e-6);
+      const double tie = 1e-11 * (std::max)(Lmax, m->diag * 1e-6);
       // faces entirely closer than the level have no arc. d(p) <= d(v_i) + |p v_i| for every
       // corner, so d <= dmin + lmax on the face; and every point of a triangle is within
       // lmax / sqrt(3) of its nearest corner (the circumradius of an acute triangle, whose largest
@@ -1014,9 +1015,9 @@ private:
       double dmin = internal::kInf, dmax = 0., lmax = 0.;
       for(int i = 0; i < 3; ++i)
       {
-        dmin = (std::min)(dmin, m_dist[m.fv[3 * f + i]]);
-        dmax = (std::max)(dmax, m_dist[m.fv[3 * f + i]]);
-        lmax = (std::max)(lmax, m.edge_length(3 * f + i));
+        dmin = (std::min)(dmin, m_dist[m->fv[3 * f + i]]);
+        dmax = (std::max)(dmax, m_dist[m->fv[3 * f + i]]);
+        lmax = (std::max)(lmax, m->edge_length(3 * f + i));
       }
       if(dmin + lmax < Lmin || dmax + lmax * internal::kInvSqrt3 < Lmin) continue;
       collect_generators(f, Lmax, gens);
@@ -1026,7 +1027,7 @@ private:
       const double cut_margin = 1e-7;
       auto near_face = [&](Vec2 x) {
         for(int k = 0; k < 3; ++k)
-          if(m.to_edge_frame(f, k, x).y < -cut_margin * lmax) return false;
+          if(m->to_edge_frame(f, k, x).y < -cut_margin * lmax) return false;
         return true;
       };
       // the curve of generator g: |x - c| = r + a . (x - c), r = level(c) - sigma (a circle of
@@ -1128,7 +1129,7 @@ private:
                 std::vector<Iso_arc>& arcs) const
   {
     Iso_arc arc;
-    arc.face = m.face_of[f];
+    arc.face = m->face_of[f];
     arc.center = {{g.c.x, g.c.y}};
     arc.radius = r;
     arc.gradient = {{gradient.x, gradient.y}};
@@ -1137,10 +1138,10 @@ private:
     arc.theta_end = theta_end;
     for(int i = 0; i < 3; ++i)
     {
-      const auto& q = m.pos[m.fv[3 * f + i]];
+      const auto& q = m->pos[m->fv[3 * f + i]];
       arc.corners[i] = Point_3(q[0], q[1], q[2]);
     }
-    arc.layout = {{m.flayout[3 * f], m.flayout[3 * f + 1], m.flayout[3 * f + 2]}};
+    arc.layout = {{m->flayout[3 * f], m->flayout[3 * f + 1], m->flayout[3 * f + 2]}};
     arcs.push_back(arc);
   }
 
@@ -1239,7 +1240,7 @@ private:
   /// endpoints coincide) into closed curves or open border-to-border curves.
   std::vector<Iso_curve> chain_iso_arcs(const std::vector<Iso_arc>& arcs) const
   {
-    return chain_arcs_by_endpoints(arcs, [this](face_descriptor fd) { return int(get(m.fim, fd)); }, m);
+    return chain_arcs_by_endpoints(arcs, [this](face_descriptor fd) { return int(get(m->fim, fd)); }, *m);
   }
 
 public:
@@ -1249,10 +1250,14 @@ public:
                                                         const Mesh& mesh)
   {
     const std::size_t n = arcs.size();
-    std::vector<std::array<double, 3> > st(n), en(n);
-    std::vector<int> fidx(n);
-    std::vector<std::pair<int, int> > by_face;  // (face index, arc), sorted
-    by_face.reserve(n);
+    // (the buffers are per thread, their storage reused from one call to the next)
+    thread_local std::vector<std::array<double, 3> > st, en;
+    thread_local std::vector<int> fidx;
+    thread_local std::vector<std::pair<int, int> > by_face;  // (face index, arc), sorted
+    st.resize(n);
+    en.resize(n);
+    fidx.resize(n);
+    by_face.clear();
     for(std::size_t i = 0; i < n; ++i)
     {
       const Point_3 a = arcs[i].point(0.), b = arcs[i].point(1.);
@@ -1265,9 +1270,11 @@ public:
     auto d2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
       return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
     };
-    std::vector<int> next(n, -1), prev(n, -1);
+    thread_local std::vector<int> next, prev;
+    next.assign(n, -1);
+    prev.assign(n, -1);
     // candidate successors: arcs of the same face and of the faces sharing a vertex with it
-    std::vector<int> cand, close;
+    thread_local std::vector<int> cand, close;
     auto share_a_vertex = [&](int f, int g) {
       for(int k = 0; k < 3; ++k)
         for(int l = 0; l < 3; ++l)
@@ -1349,7 +1356,8 @@ public:
              (a.theta_end - a.theta_start) + (b.theta_end - b.theta_start) < 2. * internal::kPi + 1e-9;
     };
     std::vector<Iso_curve> curves;
-    std::vector<char> used(n, 0);
+    thread_local std::vector<char> used;
+    used.assign(n, 0);
     auto walk = [&](int start) {
       Iso_curve c;
       int i = start;
@@ -1380,7 +1388,9 @@ public:
 private:
   const TriangleMesh& m_tm;
   VertexPointMap m_vpm;
-  Mesh m;
+  // the index-based copy of the mesh, read-only once built: the copies of an oracle (the sampler's
+  // own and its classifier) share it
+  std::shared_ptr<const Mesh> m;
   double m_tol = 0.;
   double m_radius = 0.;
   double m_discard_beyond = internal::kInf;   // windows whose minimal distance exceeds this are dropped
