@@ -248,7 +248,8 @@ public:
   /// O(A log A) where A is the number of arcs.
   std::vector<Iso_curve> iso_curve(double R) const
   {
-    std::vector<Iso_arc> arcs;
+    thread_local std::vector<Iso_arc> arcs;   // (per thread, its storage reused from one call to the next)
+    arcs.clear();
     extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs);
     return chain_iso_arcs(arcs);
   }
@@ -262,7 +263,8 @@ public:
   template <class VertexRadius>
   std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const
   {
-    std::vector<Iso_arc> arcs;
+    thread_local std::vector<Iso_arc> arcs;   // (as in iso_curve(R))
+    arcs.clear();
     extract_iso_arcs([&](int f) {
       const double rv[3] = {vertex_radius(m->vertex_of[m->fv[3 * f]]), vertex_radius(m->vertex_of[m->fv[3 * f + 1]]),
                             vertex_radius(m->vertex_of[m->fv[3 * f + 2]])};
@@ -1270,9 +1272,12 @@ public:
     auto d2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
       return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
     };
-    thread_local std::vector<int> next, prev;
+    thread_local std::vector<int> next, prev, by_x;   // (by_x: the arcs by their start's x)
     next.assign(n, -1);
     prev.assign(n, -1);
+    by_x.resize(n);
+    for(std::size_t i = 0; i < n; ++i) by_x[i] = int(i);
+    std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return st[a][0] < st[b][0] || (st[a][0] == st[b][0] && a < b); });
     // candidate successors: arcs of the same face and of the faces sharing a vertex with it
     thread_local std::vector<int> cand, close;
     auto share_a_vertex = [&](int f, int g) {
@@ -1294,9 +1299,14 @@ public:
       // at distance R up to ~1e-11).
       const double tol2 = (1e-4 * scale) * (1e-4 * scale);
       // the arcs that start close enough: almost always one, taken at once when it is a candidate
+      // (those whose start's x is within the tolerance, found in the starts sorted by x; the
+      // window a hair wider than the tolerance: the squared distance decides)
       close.clear();
-      for(std::size_t j = 0; j < n; ++j)
-        if(prev[j] < 0 && d2(en[i], st[j]) <= tol2) close.push_back(int(j));
+      const double reach = 1e-4 * scale * (1. + 1e-9);
+      for(auto it = std::lower_bound(by_x.begin(), by_x.end(), en[i][0] - reach,
+                                     [&](int j, double x) { return st[j][0] < x; });
+          it != by_x.end() && st[*it][0] <= en[i][0] + reach; ++it)
+        if(prev[*it] < 0 && d2(en[i], st[*it]) <= tol2) close.push_back(*it);
       if(close.empty()) continue;
       const auto full_circle = [&](int j) {
         return !(arcs[j].is_segment || arcs[j].theta_end - arcs[j].theta_start < 2. * internal::kPi - 1e-9);
@@ -1360,6 +1370,12 @@ public:
     used.assign(n, 0);
     auto walk = [&](int start) {
       Iso_curve c;
+      std::size_t length = 0;   // (the chain's arcs reserved at once: arc records are large)
+      for(int i = start; i >= 0 && !used[i] && length < n; i = next[i]) {
+        ++length;
+        if(next[i] == start) break;
+      }
+      c.arcs.reserve(length);
       int i = start;
       while(i >= 0 && !used[i])
       {

@@ -430,7 +430,8 @@ private:
     const double rx = radius_at(x), keep = 1 - separation_tolerance;
     const Point_3 px = CGAL::Polygon_mesh_processing::construct_point(x, tm_, CGAL::parameters::vertex_point_map(vpm_));
     const std::array<double, 3> xc = coords(px);
-    std::vector<std::size_t> near;
+    std::vector<std::size_t>& near = near_;
+    near.clear();
     double reach = 0;
     grid_.for_each_near(xc, [&](std::size_t id) {
       const std::array<double, 3> s = coords(samples_[id].point);
@@ -454,7 +455,8 @@ private:
   {
     const Point_3 px = CGAL::Polygon_mesh_processing::construct_point(x, tm_, CGAL::parameters::vertex_point_map(vpm_));
     const std::array<double, 3> xc = coords(px);
-    std::vector<std::size_t> near;
+    std::vector<std::size_t>& near = near_;
+    near.clear();
     grid_.for_each_near(xc, [&](std::size_t id) {
       const std::array<double, 3> s = coords(samples_[id].point);
       const double d2 = (s[0] - xc[0]) * (s[0] - xc[0]) + (s[1] - xc[1]) * (s[1] - xc[1]) + (s[2] - xc[2]) * (s[2] - xc[2]);
@@ -489,6 +491,7 @@ private:
   internal::Point_grid grid_;
   std::vector<Sample> samples_;
   std::vector<face_descriptor> disk_faces_;   // (the faces a new disk meets; kept to reuse its storage)
+  std::vector<std::size_t> near_;   // (the samples near a point of a new curve; kept likewise)
   std::vector<double> vertex_radius_;   // adaptive density: radius per vertex (by vertex index)
   Sampling_statistics stats_;
   double r_ = 0;
