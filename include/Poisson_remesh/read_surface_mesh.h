@@ -378,7 +378,7 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   }
 
   // points at the same position (each triangle with its own corners, as STL-like exports and
-  // some marching-cubes codes write them) are merged with CGAL's soup repair, unless the merge
+  // some isosurface extractors write them) are merged with CGAL's soup repair, unless the merge
   // would make a face repeat a vertex or the surface non-manifold: then they are kept apart
   {
     std::vector<Point> merged_points(points);

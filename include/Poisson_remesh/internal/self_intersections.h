@@ -371,7 +371,6 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
   return finish();
 }
 
-
 } // namespace internal
 } // namespace Poisson_remesh
 
