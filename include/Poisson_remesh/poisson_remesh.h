@@ -101,9 +101,9 @@ public:
   {
     if(!curves_.empty()) return;
     faces_.insert(faces(tm).first, faces(tm).second, tm);
-    faces_.accelerate_distance_queries();
+    faces_.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
   }
-  Point_3 project(const Point_3& p) const { return curves_.empty() ? faces_.closest_point(p) : curves_.closest_point(p); }
+  Point_3 project(const Point_3& p) const { return curves_.empty() ? internal::closest_point(faces_, p) : curves_.closest_point(p); }
 
 private:
   Feature_curves<K> curves_;

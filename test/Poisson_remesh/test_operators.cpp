@@ -10,7 +10,9 @@
 
 #include <Poisson_remesh/Features/detect_features.h>
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
+#include <Poisson_remesh/internal/closest_point.h>
 #include <Poisson_remesh/internal/near_points.h>
+#include <Poisson_remesh/internal/vector_angle.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -784,4 +786,60 @@ TEST_CASE("the untangling's face box grid finds every face whose box meets a box
     const double x = 0.031 * (k % 31), y = 0.023 * (k % 43), s = 0.004 * k;
     check(CGAL::Bbox_3(x, y, 0.1, x + s, y + s, 0.35));
   }
+}
+
+// internal/closest_point.h, the projections of every step: CGAL's AABB_tree::closest_point is the
+// judge, on an input with features (fandisk), from points near the surface (a vertex moved a little,
+// the relaxation's case, with the vertex as the hint) and far from it (no hint)
+TEST_CASE("the nearer-first projection finds CGAL's closest point", "[projection]")
+{
+  Mesh m;
+  REQUIRE(CGAL::IO::read_polygon_mesh(test_support::data_mesh("meshes/fandisk.off"), m));
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> Tree;
+  Tree tree(faces(m).first, faces(m).second, m);
+  tree.accelerate_distance_queries();
+  CGAL::Bbox_3 box;
+  for(V v : vertices(m)) box += m.point(v).bbox();
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) + CGAL::square(box.zmax() - box.zmin()));
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<V> vs(vertices(m).begin(), vertices(m).end());
+  double worst_near = 0, worst_far = 0;
+  std::size_t other_face = 0;
+  for(int i = 0; i < 2000; ++i) {
+    const Point v = m.point(vs[std::size_t(random()) % vs.size()]);
+    const double step = 0.02 * diagonal;
+    const Point q(v.x() + step * unit(random), v.y() + step * unit(random), v.z() + step * unit(random));
+    const double judge = std::sqrt(CGAL::to_double(tree.squared_distance(q)));
+    const double ours = std::sqrt(CGAL::squared_distance(q, PR::internal::closest_point(tree, q, v)));
+    worst_near = std::max(worst_near, std::abs(ours - judge));
+    const Point far(box.xmin() + (box.xmax() - box.xmin()) * (1.5 * unit(random) + 0.5), box.ymin() + (box.ymax() - box.ymin()) * (1.5 * unit(random) + 0.5),
+                    box.zmin() + (box.zmax() - box.zmin()) * (1.5 * unit(random) + 0.5));
+    const auto hit = PR::internal::closest_point_and_primitive(tree, far);
+    worst_far = std::max(worst_far, std::abs(std::sqrt(CGAL::squared_distance(far, hit.first)) - std::sqrt(CGAL::to_double(tree.squared_distance(far)))));
+    // (the primitive given is the one the point lies on)
+    const auto h = halfedge(hit.second, m);
+    const K::Triangle_3 t(m.point(source(h, m)), m.point(target(h, m)), m.point(target(next(h, m), m)));
+    if(std::sqrt(CGAL::squared_distance(t, hit.first)) > 1e-12 * diagonal) ++other_face;
+  }
+  CHECK(worst_near <= 1e-12 * diagonal);
+  CHECK(worst_far <= 1e-12 * diagonal);
+  CHECK(other_face == 0);
+}
+
+// internal/vector_angle.h, the relaxation's and the tessellation's triangle angles: std::atan2 is the judge
+TEST_CASE("the vector angle is atan2's to the last bits", "[projection]")
+{
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  double worst = 0;
+  for(int i = 0; i < 1000000; ++i) {
+    const double y = std::abs(unit(random)) * std::pow(10.0, 6 * unit(random)), x = unit(random) * std::pow(10.0, 6 * unit(random));
+    worst = std::max(worst, std::abs(PR::internal::vector_angle(y, x) - std::atan2(y, x)));
+  }
+  CHECK(worst <= 1e-15);
+  for(double x : {0.0, -0.0, 1.0, -1.0, 1e-300, -1e300}) CHECK(PR::internal::vector_angle(0.0, x) == std::atan2(0.0, x));
+  for(double y : {1e-300, 1.0, 1e300}) CHECK(PR::internal::vector_angle(y, 0.0) == Approx(std::atan2(y, 0.0)).epsilon(1e-15));
+  CHECK(std::isnan(PR::internal::vector_angle(std::nan(""), 1.0)));
+  CHECK(PR::internal::vector_angle(std::numeric_limits<double>::infinity(), 1.0) == std::atan2(std::numeric_limits<double>::infinity(), 1.0));
 }

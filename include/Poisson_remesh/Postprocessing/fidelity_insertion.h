@@ -17,6 +17,7 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/internal/closest_point.h>
 #include <Poisson_remesh/internal/memory_free_order.h>
 #include <Poisson_remesh/internal/near_points.h>
 #include <Poisson_remesh/internal/parallel.h>
@@ -68,7 +69,8 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const double tol = s.max_deviation * ctx.diagonal();
   if(!(tol > 0) || faces(m).empty()) return 0;
   Tree tree(faces(m).first, faces(m).second, m);
-  tree.accelerate_distance_queries();
+  tree.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
+  tree.build();
   // the input's vertices, edge midpoints and face centroids (all on the input: the distance
   // from the input to the mesh peaks inside the input's triangles as often as at its vertices)
   // (the distance queries run in parallel with CGAL::Parallel_tag; their results are taken in
@@ -90,7 +92,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   auto distances = [&] {   // (the squared distance from each query point to the mesh, or tol^2 when near)
     d2s.assign(queries.size(), 0);
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) {
-      d2s[i] = near_mesh.within(queries[i], tol) ? tol * tol : CGAL::to_double(tree.squared_distance(queries[i]));
+      d2s[i] = near_mesh.within(queries[i], tol) ? tol * tol : Poisson_remesh::internal::squared_distance_to(tree, queries[i]);
     });
   };
   auto take_far = [&] {
@@ -166,7 +168,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   }
   for(const auto& [d2, p] : nearest_on_input(points))
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)
-    if(d2 > tol * tol && CGAL::to_double(tree.squared_distance(p)) > tol * tol) far.push_back({d2, p});
+    if(d2 > tol * tol && Poisson_remesh::internal::squared_distance_to(tree, p) > tol * tol) far.push_back({d2, p});
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   // (the split point, the edge's ends, and whether the edge follows a feature curve or a border)
@@ -210,7 +212,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_insertions_share * double(num_vertices(m))));
   for(const auto& fp : far) {
     if(mine.size() >= cap) break;
-    const face_descriptor f = tree.closest_point_and_primitive(fp.second).second;
+    const face_descriptor f = Poisson_remesh::internal::closest_point_and_primitive(tree, fp.second).second;
     if(touched.count(f)) continue;
     // the triangle and its neighbours take one new vertex at most
     touched.insert(f);

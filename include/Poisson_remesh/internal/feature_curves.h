@@ -8,6 +8,7 @@
 #define POISSON_REMESH_INTERNAL_FEATURE_CURVES_H
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/internal/closest_point.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -36,15 +37,16 @@ public:
       if(features.is_feature(e)) segments_.emplace_back(get(vpm, source(halfedge(e, tm), tm)), get(vpm, target(halfedge(e, tm), tm)));
     if(segments_.empty()) return;
     tree_.insert(segments_.begin(), segments_.end());
-    tree_.accelerate_distance_queries();
+    tree_.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
+    tree_.build();
   }
   Feature_curves(const Feature_curves&) = delete;   // (the tree points into segments_)
   Feature_curves& operator=(const Feature_curves&) = delete;
 
   bool empty() const { return segments_.empty(); }
   // (not empty)
-  Point_3 closest_point(const Point_3& p) const { return tree_.closest_point(p); }
-  Point_3 closest_point(const Point_3& p, const Point_3& hint) const { return tree_.closest_point(p, hint); }
+  Point_3 closest_point(const Point_3& p) const { return internal::closest_point(tree_, p); }
+  Point_3 closest_point(const Point_3& p, const Point_3& hint) const { return internal::closest_point(tree_, p, hint); }
 
 private:
   std::vector<Segment_3> segments_;

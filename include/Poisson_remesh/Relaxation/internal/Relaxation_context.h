@@ -11,9 +11,11 @@
 #define POISSON_REMESH_RELAXATION_INTERNAL_RELAXATION_CONTEXT_H
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/internal/closest_point.h>
 #include <Poisson_remesh/internal/feature_curves.h>
 #include <Poisson_remesh/internal/parallel.h>
 #include <Poisson_remesh/internal/self_intersections.h>
+#include <Poisson_remesh/internal/vector_angle.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -161,7 +163,8 @@ public:
   Relaxation_context(const InputMesh& input, const Feature_set<InputMesh>& features)
     : input_(input), faces_(faces(input).first, faces(input).second, input), curves_(input, features)
   {
-    faces_.accelerate_distance_queries();
+    faces_.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
+    if(!faces_.empty()) faces_.build();
     const auto& pts = get(CGAL::vertex_point, input);
     if(!vertices(input).empty()) {
       CGAL::Bbox_3 box;
@@ -176,14 +179,14 @@ public:
   double diagonal() const { return diagonal_; }
 
   /// the point of the input surface closest to `p`
-  Point_3 project_on_surface(const Point_3& p) const { return faces_.closest_point(p); }
+  Point_3 project_on_surface(const Point_3& p) const { return internal::closest_point(faces_, p); }
   /// the point of the input's feature edges closest to `p` (of the surface, without features)
   Point_3 project_on_features(const Point_3& p) const { return curves_.empty() ? project_on_surface(p) : curves_.closest_point(p); }
   /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
   /// project_on_features), near p: the search starts from it instead of a k-d tree query, which
   /// makes projections of moving vertices cheaper (the result is the same closest point).
   /// @{
-  Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return faces_.closest_point(p, hint); }
+  Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return internal::closest_point(faces_, p, hint); }
   Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
   {
     return curves_.empty() ? project_on_surface(p, hint) : curves_.closest_point(p, hint);
@@ -193,7 +196,7 @@ public:
   static double angle(const Point_3& a, const Point_3& o, const Point_3& b)
   {
     const Vector_3 u = a - o, v = b - o;
-    return std::atan2(std::sqrt(CGAL::to_double(CGAL::cross_product(u, v).squared_length())), CGAL::to_double(u * v));
+    return internal::vector_angle(std::sqrt(CGAL::to_double(CGAL::cross_product(u, v).squared_length())), CGAL::to_double(u * v));
   }
   // the smallest angle lies opposite the shortest edge: one atan2 instead of three (the relaxer's
   // angle searches spend most of their time here)
@@ -398,7 +401,7 @@ public:
     if(!(ln > 0 && lnow > 0) || CGAL::to_double(n * now) < 0.5 * ln * lnow) return -1;
     // (the angle searches spend most of their time here: each angle is atan2 of twice the area,
     // lnow, the same at every corner, over the dot product of the corner's edges)
-    auto angle_at = [lnow](const Point_3& o, const Point_3& x, const Point_3& y) { return std::atan2(lnow, CGAL::to_double((x - o) * (y - o))); };
+    auto angle_at = [lnow](const Point_3& o, const Point_3& x, const Point_3& y) { return internal::vector_angle(lnow, CGAL::to_double((x - o) * (y - o))); };
     if(sa == 1 && sb == 1) {   // (the smallest angle lies opposite the shortest edge)
       const double l_a = CGAL::to_double(CGAL::squared_distance(at, b)), l_at = CGAL::to_double(CGAL::squared_distance(a, b));
       const double l_b = CGAL::to_double(CGAL::squared_distance(a, at));

@@ -19,6 +19,7 @@
 #include <CGAL/boost/graph/properties.h>
 #include <Poisson_remesh/internal/memory_free_order.h>
 #include <Poisson_remesh/internal/self_intersections.h>
+#include <Poisson_remesh/internal/vector_angle.h>
 
 #include <algorithm>
 #include <array>
@@ -42,7 +43,7 @@ inline double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b
 inline double norm3(const Vec3& a) { return std::sqrt(dot3(a, a)); }
 inline double angle3(const Vec3& a, const Vec3& b) // radians, in [0, pi]
 {
-  return std::atan2(norm3(cross3(a, b)), dot3(a, b));
+  return vector_angle(norm3(cross3(a, b)), dot3(a, b));
 }
 // the smallest angle of triangle abc lies opposite its shortest side: one atan2 instead of three
 // (the flips of the tessellation ask for it four times per edge they look at)
