@@ -825,6 +825,24 @@ TEST_CASE("the nearer-first projection finds CGAL's closest point", "[projection
   CHECK(worst_near <= 1e-12 * diagonal);
   CHECK(worst_far <= 1e-12 * diagonal);
   CHECK(other_face == 0);
+  // a query on the surface is its own closest point, also when it is the hint
+  for(int i = 0; i < 200; ++i) {
+    const Point v = m.point(vs[std::size_t(random()) % vs.size()]);
+    CHECK(PR::internal::closest_point(tree, v, v) == v);
+    CHECK(CGAL::squared_distance(PR::internal::closest_point(tree, v), v) <= CGAL::square(1e-12 * diagonal));
+  }
+  // trees of one, two and three triangles (CGAL's traversal takes them apart)
+  for(std::size_t n = 1; n <= 3; ++n) {
+    std::vector<Mesh::Face_index> some(faces(m).begin(), faces(m).begin() + std::ptrdiff_t(n));
+    Tree small(some.begin(), some.end(), m);
+    for(int i = 0; i < 100; ++i) {
+      const Point q(box.xmin() + (box.xmax() - box.xmin()) * unit(random), box.ymin() + (box.ymax() - box.ymin()) * unit(random),
+                    box.zmin() + (box.zmax() - box.zmin()) * unit(random));
+      const auto hit = PR::internal::closest_point_and_primitive(small, q);
+      CHECK(std::abs(std::sqrt(CGAL::squared_distance(q, hit.first)) - std::sqrt(CGAL::to_double(small.squared_distance(q)))) <= 1e-12 * diagonal);
+      CHECK(std::find(some.begin(), some.end(), hit.second) != some.end());
+    }
+  }
 }
 
 // internal/vector_angle.h, the relaxation's and the tessellation's triangle angles: std::atan2 is the judge
@@ -839,7 +857,15 @@ TEST_CASE("the vector angle is atan2's to the last bits", "[projection]")
   }
   CHECK(worst <= 1e-15);
   for(double x : {0.0, -0.0, 1.0, -1.0, 1e-300, -1e300}) CHECK(PR::internal::vector_angle(0.0, x) == std::atan2(0.0, x));
-  for(double y : {1e-300, 1.0, 1e300}) CHECK(PR::internal::vector_angle(y, 0.0) == Approx(std::atan2(y, 0.0)).epsilon(1e-15));
+  for(double y : {1e-300, 1.0, 1e300}) {
+    CHECK(PR::internal::vector_angle(y, 0.0) == Approx(std::atan2(y, 0.0)).epsilon(1e-15));
+    CHECK(PR::internal::vector_angle(y, -0.0) == Approx(std::atan2(y, -0.0)).epsilon(1e-15));
+  }
+  // subnormal and extreme arguments
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  for(double y : {tiny, 1e-310, 1.0, 1e308})
+    for(double x : {tiny, -tiny, 1e-310, -1e-310, 1.0, -1.0, 1e308, -1e308})
+      CHECK(std::abs(PR::internal::vector_angle(y, x) - std::atan2(y, x)) <= 1e-15);
   CHECK(std::isnan(PR::internal::vector_angle(std::nan(""), 1.0)));
   CHECK(PR::internal::vector_angle(std::numeric_limits<double>::infinity(), 1.0) == std::atan2(std::numeric_limits<double>::infinity(), 1.0));
 }

@@ -12,14 +12,19 @@
 // predicates), so the closest point is CGAL's; only the boxes' pruning is in double precision,
 // with a relative slack of 1e-12 so that rounding never prunes a box the exact test would visit.
 // Without a hint the search needs no k-d tree: it starts from a point farther than the whole tree.
+// (With a kernel whose coordinates are not doubles, the boxes are pruned with the coordinates
+// rounded to double: a box may then be passed over for a point closer by that rounding alone.)
 
 #ifndef POISSON_REMESH_INTERNAL_CLOSEST_POINT_H
 #define POISSON_REMESH_INTERNAL_CLOSEST_POINT_H
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/assertions.h>
 #include <CGAL/number_utils.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace Poisson_remesh {
@@ -73,7 +78,8 @@ public:
   const Primitive_id& id() const { return id_; }
 
 private:
-  double bound() const { return best_d2_ * (1 + 1e-12); }
+  // (the absolute term: a squared distance in the subnormal range, where the relative slack adds nothing)
+  double bound() const { return best_d2_ * (1 + 1e-12) + (std::numeric_limits<double>::min)(); }
   double squared_distance_to(const Point& p) const
   {
     const double x = CGAL::to_double(p.x()) - q_[0], y = CGAL::to_double(p.y()) - q_[1], z = CGAL::to_double(p.z()) - q_[2];
@@ -96,15 +102,16 @@ private:
   Primitive_id id_{};
 };
 
-// a point farther from `query` than every point of the tree's box
+// a point farther from `query` than every point of the tree's box (those are within
+// sqrt(3) max(dx, dy, dz) of it; no square, which could overflow)
 template <class Tree>
 typename Tree::Point beyond_the_tree(const Tree& tree, const typename Tree::Point& query)
 {
   const CGAL::Bbox_3 b = tree.bbox();
   const double x = CGAL::to_double(query.x()), y = CGAL::to_double(query.y()), z = CGAL::to_double(query.z());
-  const double dx = (std::max)(std::abs(x - b.xmin()), std::abs(x - b.xmax())), dy = (std::max)(std::abs(y - b.ymin()), std::abs(y - b.ymax())),
-               dz = (std::max)(std::abs(z - b.zmin()), std::abs(z - b.zmax()));
-  return typename Tree::Point(x + 2 * std::sqrt(dx * dx + dy * dy + dz * dz) + 1, y, z);
+  const double d = (std::max)({std::abs(x - b.xmin()), std::abs(x - b.xmax()), std::abs(y - b.ymin()), std::abs(y - b.ymax()),
+                               std::abs(z - b.zmin()), std::abs(z - b.zmax())});
+  return typename Tree::Point(x + 4 * d + 1, y, z);
 }
 
 } // namespace closest_point_detail
@@ -119,10 +126,13 @@ typename Tree::Point closest_point(const Tree& tree, const typename Tree::Point&
   return search.point();
 }
 
-/// The closest point of `tree`'s primitives to `query`, and its primitive. `tree` is not empty.
+/// The closest point of `tree`'s primitives to `query`, and its primitive. `tree` is not empty;
+/// `query`'s coordinates are finite.
 template <class Tree>
 typename Tree::Point_and_primitive_id closest_point_and_primitive(const Tree& tree, const typename Tree::Point& query)
 {
+  CGAL_precondition(std::isfinite(CGAL::to_double(query.x())) && std::isfinite(CGAL::to_double(query.y())) &&
+                    std::isfinite(CGAL::to_double(query.z())));
   closest_point_detail::Nearest_first<Tree> search(tree.traits(), query, closest_point_detail::beyond_the_tree(tree, query));
   tree.traversal_with_priority(query, search);
   return {search.point(), search.id()};
