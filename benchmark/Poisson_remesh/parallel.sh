@@ -6,7 +6,8 @@
 # N threads are the same file.
 # Usage: parallel.sh [BUILD_DIR] [THREADS] [MESH...]   (default: armadillo bunny00 camel fandisk
 # elephant; a mesh is a name of build/data/meshes without .off). Each time is the best of 2 runs
-# (RUNS=N: of N) of the remesh call inside the program (the figure it prints), seed 1.
+# (RUNS=N: of N) of the remesh call inside the program (the figure it prints), seed 1, the three
+# alternated run by run; the speed-up also as the median of each run's own 1-thread / N-thread ratio.
 # Then the sampler alone (poisson_sample): samples per second of the sequential sampler, and of
 # the parallel mode's slabs with 1 and N threads.
 set -uo pipefail
@@ -20,28 +21,37 @@ meshes=("$@")
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 seconds() { sed -n 's/.* \.\.\. \([0-9.e-]*\) s (.*/\1/p' "$1" | head -1; }
 runs="${RUNS:-2}"   # (RUNS=N: the best of N runs of each remesh; this machine's speed moves by up to 40%)
-best() {   # best() NAME ARGS...: the smallest remesh time of $runs runs; the output kept in $out/NAME.off
+once() {   # once() NAME ARGS...: the remesh time of one run; the output kept in $out/NAME.off
   local name=$1; shift
-  local b=""
-  for run in $(seq "$runs"); do
-    "$program" --quiet --no-self-intersections --seed 1 "$@" "$out/$name.off" > "$out/$name.log" 2>&1 || { echo "failed"; return; }
-    local s; s=$(seconds "$out/$name.log")
-    if [ -z "$b" ] || awk -v s="$s" -v b="$b" 'BEGIN { exit !(s < b) }'; then b=$s; fi
-  done
-  echo "$b"
+  "$program" --quiet --no-self-intersections --seed 1 "$@" "$out/$name.off" > "$out/$name.log" 2>&1 || { echo "failed"; return; }
+  seconds "$out/$name.log"
 }
-echo "| mesh | input V | ours, 1 thread (s) | ours, $threads threads (s) | speed-up | CGAL (s) | ours / CGAL, 1 thread | ours / CGAL, $threads threads | same output |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|:-:|"
+echo "| mesh | input V | ours, 1 thread (s) | ours, $threads threads (s) | speed-up | speed-up, median of the runs' | CGAL (s) | ours / CGAL, 1 thread | ours / CGAL, $threads threads | same output |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|:-:|"
 for m in "${meshes[@]}"; do
   in="$data/$m.off"
-  [ -f "$in" ] || { echo "| $m | missing | | | | | | | |"; continue; }
-  one=$(best one --threads 1 "$in")
-  many=$(best many --threads "$threads" "$in")
-  peer=$(best peer --method isotropic --iterations 10 --threads 1 "$in")
+  [ -f "$in" ] || { echo "| $m | missing | | | | | | | | |"; continue; }
+  # (the three alternated run by run: this machine's speed drifts within minutes)
+  times=""
+  for run in $(seq "$runs"); do
+    times="$times $(once one --threads 1 "$in") $(once many --threads "$threads" "$in") $(once peer --method isotropic --iterations 10 --threads 1 "$in")"
+  done
+  case "$times" in *failed*) echo "| $m | | failed | | | | | | | |"; continue ;; esac
   v=$(sed -n 's/.*(\([0-9]*\) vertices) to about.*/\1/p' "$out/one.log" | head -1)
   same=no; cmp -s "$out/one.off" "$out/many.off" && same=yes
-  awk -v m="$m" -v v="$v" -v a="$one" -v b="$many" -v p="$peer" -v same="$same" \
-    'BEGIN { printf "| %s | %s | %.2f | %.2f | %.2fx | %.2f | %.1fx | %.1fx | %s |\n", m, v, a, b, a / b, p, a / p, b / p, same }'
+  echo "$times" | awk -v m="$m" -v v="$v" -v same="$same" '{
+    n = NF / 3
+    for(i = 0; i < n; ++i) {
+      o = $(3 * i + 1); t = $(3 * i + 2); p = $(3 * i + 3)
+      if(i == 0 || o < a) a = o
+      if(i == 0 || t < b) b = t
+      if(i == 0 || p < c) c = p
+      r[i] = o / t
+    }
+    for(i = 0; i < n; ++i) for(j = i + 1; j < n; ++j) if(r[j] < r[i]) { x = r[i]; r[i] = r[j]; r[j] = x }
+    med = n % 2 ? r[(n - 1) / 2] : (r[n / 2 - 1] + r[n / 2]) / 2
+    printf "| %s | %s | %.2f | %.2f | %.2fx | %.2fx | %.2f | %.1fx | %.1fx | %s |\n", m, v, a, b, a / b, med, c, a / c, b / c, same
+  }'
 done
 echo
 # the sampler alone: poisson_sample at the input's vertex count, sequential (the default) and in
