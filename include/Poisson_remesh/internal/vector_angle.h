@@ -3,8 +3,8 @@
 // The angle between two vectors from y = |u x v| >= 0 and x = u . v: atan2(y, x), in [0, pi].
 //
 // Why not std::atan2: the relaxation's angle searches and Lloyd steps ask for millions of
-// triangle angles (a profile of a whole remesh put 12-15% of its instructions in glibc's atan2,
-// which also saves and restores the rounding mode at every call). With y >= 0 only a half-plane
+// triangle angles, and glibc's atan2 handles the whole plane and saves and restores the rounding
+// mode at every call (RESULTS.md gives its share of a remesh). With y >= 0 only a half-plane
 // is left: the quotient of the smaller by the larger of y and |x| is in [0, 1], it is moved
 // next to the nearest of nine table points k/8 (atan(u) = atan(c) + atan((u - c) / (1 + u c))),
 // leaving an argument of at most 1/16, where seven terms of the arctangent's series are exact to
