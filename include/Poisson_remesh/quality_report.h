@@ -294,7 +294,8 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   auto defect = get(CGAL::dynamic_vertex_property_t<double>(), ref);
   for(ref_vertex v : vertices(ref)) put(defect, v, 0.0);
   std::size_t index_bound = 0;
-  for(ref_vertex v : vertices(ref)) index_bound = std::max(index_bound, std::size_t(get(CGAL::get_initialized_vertex_index_map(ref), v)) + 1);
+  const auto vim = CGAL::get_initialized_vertex_index_map(ref);
+  for(ref_vertex v : vertices(ref)) index_bound = std::max(index_bound, std::size_t(get(vim, v)) + 1);
   Vertex_ball<ReferenceMesh, decltype(rvpm)> ball(ref, rvpm, index_bound);
   // v is the pointiest vertex within 0.9 `scale` of it (well inside), where the defects add up
   // to more than 0
@@ -312,9 +313,12 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
   // the reference's vertices with a sector under 30 degrees, and the own angle of each face's sector there
   std::map<V3, std::vector<std::pair<ref_face, double>>> corners;
   std::map<V3, ref_vertex> tips;   // the other vertices with fewer than two sharp edges and a positive defect
+  std::vector<typename RGT::halfedge_descriptor> ring;   // halfedges into v, in turning order
+  std::vector<std::pair<ref_face, double>> sectors;
+  std::vector<ref_face> members;
   for(ref_vertex v : vertices(ref)) {
     if(halfedge(v, ref) == RGT::null_halfedge()) continue;
-    std::vector<typename RGT::halfedge_descriptor> ring;   // halfedges into v, in turning order
+    ring.clear();
     for(auto h : CGAL::halfedges_around_target(halfedge(v, ref), ref)) ring.push_back(h);
     const std::size_t n = ring.size();
     // face i is face(ring[i]); it meets face i+1 across edge(next(ring[i]))
@@ -322,10 +326,10 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
     for(std::size_t i = 0; i < n; ++i)
       if(is_cut(next(ring[i], ref))) { ++cuts; if(first_cut == n) first_cut = i; }
     const double least = cuts >= 2 ? 1 : 3;
-    std::vector<std::pair<ref_face, double>> sectors;
+    sectors.clear();
+    members.clear();
     const std::size_t start = cuts == 0 ? 0 : first_cut + 1;
     double sum = 0, total = 0;
-    std::vector<ref_face> members;
     bool small = false;
     for(std::size_t k = 0; k < n; ++k) {
       const auto h = ring[(start + k) % n];
@@ -344,7 +348,7 @@ void fill_min_angle_away_from_sharp_corners(const TriangleMesh& tm, VPM vpm, con
       }
     }
     if(!is_border(v, ref)) put(defect, v, 360 - total);
-    if(small) corners[to_v3(get(rvpm, v))] = std::move(sectors);
+    if(small) corners[to_v3(get(rvpm, v))] = sectors;
     else if(cuts < 2 && get(defect, v) > 0) tips[to_v3(get(rvpm, v))] = v;
   }
   // the largest smallest angle at v of a fan of triangles whose other vertices lie on the
@@ -530,7 +534,7 @@ void fill_self_intersections_away_from_reference_ones(
   const std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor, typename boost::graph_traits<TriangleMesh>::face_descriptor>>& pairs,
   Quality_report& r)
 {
-  const Reference_crossings<ReferenceMesh> crossings(ref, ConcurrencyTag());
+  const Reference_crossings<ReferenceMesh> crossings(ref, CGAL::Sequential_tag());   // (as in quality_report_of)
   r.number_of_reference_self_intersecting_face_pairs = crossings.number_of_pairs;
   if(crossings.number_of_pairs == 0) {
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
@@ -568,7 +572,9 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
   }
   if(check_si && !faces(tm).empty()) {
     std::size_t count = 0;
-    CGAL::Polygon_mesh_processing::self_intersections<ConcurrencyTag>(
+    // (on one thread whatever ConcurrencyTag says: CGAL 5.5's parallel search took longer than its
+    // sequential one on two cores, e.g. 12 against 10 ms on 6,400 faces, 103 against 90 ms on 52,000)
+    CGAL::Polygon_mesh_processing::self_intersections<CGAL::Sequential_tag>(
       tm, boost::make_function_output_iterator([&](const std::pair<face_descriptor, face_descriptor>& fp) {
         ++count;
         if(pairs) pairs->push_back(fp);
@@ -588,13 +594,15 @@ Quality_report quality_report_of(const TriangleMesh& tm, const NamedParameters& 
 // half-size triangles they make each lie within their circumradius, at most their longest edge
 // over sqrt 3, of one of their corners).
 // Only the largest distance is wanted, so a midpoint or centroid is searched in the tree only
-// when it could raise it: its distance to the faces of b around the face nearest its first
-// vertex (a few triangles: the ring of that face's corners) bounds its distance to b from above,
-// and the points are searched by decreasing bound until the bound is no more than the largest
-// distance found (the same figure as searching every point, for a fraction of the searches).
-// (`ConcurrencyTag`: the vertices' searches and the bounds by TBB's threads, the same figures)
+// when it could raise it: its distance to any faces of b bounds its distance to b from above, and
+// the points are searched by decreasing bound until the bound is no more than the largest distance
+// found (the same figure as searching every point, to within `negligible`, for a fraction of the
+// searches).
+// (`ConcurrencyTag`: the vertices' searches, the bounds and the blocks of searches by TBB's
+// threads, the same figures)
 template <class ConcurrencyTag, class Mesh, class VPM, class MeshB, class VPMB, class Tree>
-std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const MeshB& b, VPMB vpm_b, const Tree& tree)
+std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, const MeshB& b, VPMB vpm_b, const Tree& tree,
+                                                      double negligible)
 {
   typedef typename Tree::Point Point;
   typedef typename CGAL::Kernel_traits<Point>::Kernel K;
@@ -619,50 +627,86 @@ std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, co
     nearest_face[i] = hit.second;
     dv[i] = CGAL::to_double(CGAL::squared_distance(p, nearest[i]));
   });
-  // the midpoints and centroids, each with its vertex of a (for the search's start) and the upper
-  // bound of its squared distance to b
-  struct Candidate { Point x; std::size_t vertex; double bound; };
+  // (the largest vertex distance: a midpoint or centroid nearer than it cannot raise the figure)
+  double lower = 0, cover = 0;
+  for(double x : dv) lower = std::max(lower, x);
+  // (a bound within rounding of the largest distance found, or under `negligible`, cannot raise it
+  // by more than that: on a flat part every distance is rounding noise, and all would be searched)
+  const double rounding = 1 + 1e-12;
+  auto could_raise = [&](double bound) { return bound > lower * rounding && bound > negligible * negligible; };
+  // the midpoints and centroids, each with an upper bound of its squared distance to b: its
+  // distance to the nearest of the faces of b nearest its own vertices (one to three triangles; a
+  // whole ring of faces around them cost more than the searches it saved), and that face
+  struct Candidate { Point x; face_b face; double bound; };
   std::vector<Candidate> cs(es.size() + fs.size());
-  auto ring_bound = [&](const Point& x, std::size_t v) {
-    double best = CGAL::to_double(CGAL::squared_distance(x, nearest[v]));
-    const face_b f = nearest_face[v];
-    for(auto c : CGAL::vertices_around_face(halfedge(f, b), b))
-      for(face_b g : CGAL::faces_around_target(halfedge(c, b), b)) {
-        if(g == boost::graph_traits<MeshB>::null_face()) continue;
-        const auto h = halfedge(g, b);
-        // (a degenerate triangle is measured as its segments)
-        const typename K::Triangle_3 t(get(vpm_b, source(h, b)), get(vpm_b, target(h, b)), get(vpm_b, target(next(h, b), b)));
-        best = (std::min)(best, CGAL::to_double(CGAL::squared_distance(x, t)));
+  auto triangle = [&](face_b g) {
+    const auto h = halfedge(g, b);
+    return typename K::Triangle_3(get(vpm_b, source(h, b)), get(vpm_b, target(h, b)), get(vpm_b, target(next(h, b), b)));
+  };
+  // (a degenerate triangle is measured as its segments)
+  auto distance = [&](const Point& x, face_b g) { return CGAL::to_double(CGAL::squared_distance(x, triangle(g))); };
+  auto candidate = [&](const Point& x, const std::size_t* element, std::size_t n) {
+    Candidate c{x, nearest_face[element[0]], std::numeric_limits<double>::infinity()};
+    for(std::size_t k = 0; k < n; ++k) {
+      const face_b g = nearest_face[element[k]];
+      if(std::find_if(element, element + k, [&](std::size_t w) { return nearest_face[w] == g; }) != element + k) continue;
+      const double d = distance(x, g);
+      if(d < c.bound) { c.bound = d; c.face = g; }
+    }
+    return c;
+  };
+  // A point that could raise the figure is first brought nearer: from its face to the neighbour
+  // across an edge that is nearer, while there is one (a few steps; on a flat part the point's
+  // own face, at distance 0). Then, if it still could, it is searched in the tree from the point
+  // of that face nearest to it (a search from there visits few boxes).
+  auto searched = [&](const Candidate& c) {
+    face_b g = c.face;
+    double d = c.bound;
+    for(int step = 0; step < 8 && d > 0; ++step) {
+      face_b best = g;
+      for(auto h : CGAL::halfedges_around_face(halfedge(g, b), b)) {
+        const face_b n = face(opposite(h, b), b);
+        if(n == boost::graph_traits<MeshB>::null_face()) continue;
+        const double dn = distance(c.x, n);
+        if(dn < d) { d = dn; best = n; }
       }
-    return best;
+      if(best == g) break;
+      g = best;
+    }
+    if(!could_raise(d)) return 0.0;
+    Point start = K().construct_projected_point_3_object()(triangle(g), c.x);
+    // (the search's start must lie on b: a corner of the face if the projection failed)
+    if(!(std::isfinite(CGAL::to_double(start.x())) && std::isfinite(CGAL::to_double(start.y())) &&
+         std::isfinite(CGAL::to_double(start.z()))))
+      start = get(vpm_b, target(halfedge(g, b), b));
+    return CGAL::to_double(tree.squared_distance(c.x, start));
   };
   for_each_index<ConcurrencyTag>(es.size(), [&](std::size_t i) {
     const auto h = halfedge(es[i], a);
-    const std::size_t v = get(index, source(h, a));
-    const Point x = CGAL::midpoint(get(vpm, source(h, a)), get(vpm, target(h, a)));
-    cs[i] = {x, v, ring_bound(x, v)};
+    const std::size_t element[2] = {get(index, source(h, a)), get(index, target(h, a))};
+    cs[i] = candidate(CGAL::midpoint(get(vpm, source(h, a)), get(vpm, target(h, a))), element, 2);
   });
   for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
     const auto h = halfedge(fs[i], a);
     const auto p = get(vpm, source(h, a)), q = get(vpm, target(h, a)), r = get(vpm, target(next(h, a), a));
-    const std::size_t v = get(index, source(h, a));
-    const Point x = CGAL::centroid(p, q, r);
-    cs[es.size() + i] = {x, v, ring_bound(x, v)};
+    const std::size_t element[3] = {get(index, source(h, a)), get(index, target(h, a)), get(index, target(next(h, a), a))};
+    cs[es.size() + i] = candidate(CGAL::centroid(p, q, r), element, 3);
     longest[i] = std::max({CGAL::to_double(CGAL::squared_distance(p, q)), CGAL::to_double(CGAL::squared_distance(q, r)),
                            CGAL::to_double(CGAL::squared_distance(r, p))});
   });
-  double lower = 0, cover = 0;
-  for(double x : dv) lower = std::max(lower, x);
   for(double x : longest) cover = std::max(cover, x);
-  // (a bound within rounding of the largest distance found cannot raise it by more than rounding)
-  const double rounding = 1 + 1e-12;
   std::vector<std::size_t> order;
   for(std::size_t i = 0; i < cs.size(); ++i)
-    if(cs[i].bound > lower * rounding) order.push_back(i);
+    if(could_raise(cs[i].bound)) order.push_back(i);
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cs[i].bound > cs[j].bound || (cs[i].bound == cs[j].bound && i < j); });
-  for(std::size_t i : order) {
-    if(!(cs[i].bound > lower * rounding)) break;
-    lower = std::max(lower, CGAL::to_double(tree.squared_distance(cs[i].x, nearest[cs[i].vertex])));
+  // (in blocks of 256, each searched by TBB's threads: a block may search a few points the one-by-one
+  // loop would have skipped, whose distances are under the largest found, so the figure is the same)
+  std::vector<double> found;
+  for(std::size_t start = 0; start < order.size() && could_raise(cs[order[start]].bound); start += 256) {
+    const std::size_t n = std::min<std::size_t>(256, order.size() - start);
+    found.assign(n, 0);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t k) { found[k] = searched(cs[order[start + k]]); });
+    for(double d : found) lower = std::max(lower, d);
   }
   return {std::sqrt(lower), std::sqrt(cover) / (2 * std::sqrt(3.0))};
 }
@@ -679,8 +723,9 @@ std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, co
   - `angle_histogram_bin_width` (degrees, default 1)
 
   `ConcurrencyTag`: CGAL::Sequential_tag (the default) or CGAL::Parallel_tag (needs TBB) /
-  CGAL::Parallel_if_available_tag: the self-intersection search by TBB's threads, with the same
-  figures.
+  CGAL::Parallel_if_available_tag, with the same figures. Here it changes nothing: the
+  self-intersection search runs on one thread (CGAL 5.5's parallel search was the slower one on two
+  cores); the form with a reference below runs its Hausdorff queries on TBB's threads.
 */
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class T = bool, class Tag = CGAL::internal_np::all_default_t,
           class Base = CGAL::internal_np::No_property>
@@ -748,8 +793,9 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     tm_tree.accelerate_distance_queries();
     reference_tree.accelerate_distance_queries();
     const auto rvpm = get_const_property_map(CGAL::vertex_point, reference);
-    const auto there = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(tm, vpm, reference, rvpm, reference_tree);
-    const auto back = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(reference, rvpm, tm, vpm, tm_tree);
+    // (distances under 1e-12 of the diagonal are not told apart: far below the figure's precision)
+    const auto there = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(tm, vpm, reference, rvpm, reference_tree, 1e-12 * diag);
+    const auto back = internal::sampled_one_sided_hausdorff<ConcurrencyTag>(reference, rvpm, tm, vpm, tm_tree, 1e-12 * diag);
     const double h = std::max(there.first, back.first);
     r.hausdorff_absolute = h;
     r.hausdorff = diag > 0 ? h / diag : 0.0;

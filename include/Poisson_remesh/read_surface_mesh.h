@@ -10,6 +10,7 @@
 #ifndef POISSON_REMESH_READ_SURFACE_MESH_H
 #define POISSON_REMESH_READ_SURFACE_MESH_H
 
+#include <Poisson_remesh/internal/plain_off.h>
 #include <Poisson_remesh/internal/repair_degenerate_faces.h>
 #include <Poisson_remesh/parameters.h>
 
@@ -145,34 +146,45 @@ template <class PolygonRange, class PointRange = std::vector<int>>
 std::size_t count_non_manifold_soup_vertices(PolygonRange& polygons, std::size_t nb_points,
                                              std::size_t& first, PointRange* points = nullptr)
 {
-  std::vector<std::vector<std::size_t>> incident(nb_points);
-  for(std::size_t f = 0; f < polygons.size(); ++f)
-    for(std::size_t v : polygons[f]) incident[v].push_back(f);
+  // the polygons around each vertex, in one array (offset[v] to offset[v + 1])
+  std::vector<std::size_t> offset(nb_points + 1, 0), incident;
+  for(const auto& poly : polygons)
+    for(std::size_t v : poly) ++offset[v + 1];
+  for(std::size_t v = 0; v < nb_points; ++v) offset[v + 1] += offset[v];
+  incident.resize(offset[nb_points]);
+  {
+    std::vector<std::size_t> fill(offset.begin(), offset.end() - 1);
+    for(std::size_t f = 0; f < polygons.size(); ++f)
+      for(std::size_t v : polygons[f]) incident[fill[v]++] = f;
+  }
 
   std::size_t count = 0;
   first = std::size_t(-1);
   std::vector<std::size_t> parent;
+  std::vector<std::pair<std::size_t, std::size_t>> neighbors;   // (w, local index of a polygon with edge (v, w))
   for(std::size_t v = 0; v < nb_points; ++v) {
-    const std::vector<std::size_t>& inc = incident[v];
-    if(inc.size() < 2) continue;
-    parent.resize(inc.size());
-    for(std::size_t i = 0; i < inc.size(); ++i) parent[i] = i;
+    const std::size_t* const inc = incident.data() + offset[v];
+    const std::size_t m = offset[v + 1] - offset[v];
+    if(m < 2) continue;
+    parent.resize(m);
+    for(std::size_t i = 0; i < m; ++i) parent[i] = i;
     auto find = [&](std::size_t i) { while(parent[i] != i) i = parent[i] = parent[parent[i]]; return i; };
-    // link the polygons around v that share an edge (v, w)
-    std::map<std::size_t, std::size_t> first_with_neighbor; // w -> local index of a polygon with edge (v,w)
-    for(std::size_t i = 0; i < inc.size(); ++i) {
+    // link the polygons around v that share an edge (v, w): sorted by w, those of one w are adjacent
+    neighbors.clear();
+    for(std::size_t i = 0; i < m; ++i) {
       const auto& poly = polygons[inc[i]];
       const std::size_t n = poly.size();
       for(std::size_t k = 0; k < n; ++k) {
         if(poly[k] != v) continue;
-        for(std::size_t w : { poly[(k + 1) % n], poly[(k + n - 1) % n] }) {
-          auto ins = first_with_neighbor.emplace(w, i);
-          if(!ins.second) parent[find(i)] = find(ins.first->second);
-        }
+        neighbors.emplace_back(poly[(k + 1) % n], i);
+        neighbors.emplace_back(poly[(k + n - 1) % n], i);
       }
     }
+    std::sort(neighbors.begin(), neighbors.end());
+    for(std::size_t j = 1; j < neighbors.size(); ++j)
+      if(neighbors[j].first == neighbors[j - 1].first) parent[find(neighbors[j].second)] = find(neighbors[j - 1].second);
     std::size_t fans = 0;
-    for(std::size_t i = 0; i < inc.size(); ++i) if(find(i) == i) ++fans;
+    for(std::size_t i = 0; i < m; ++i) if(find(i) == i) ++fans;
     if(fans < 2) continue;
     if(count == 0) first = v;
     ++count;
@@ -180,7 +192,7 @@ std::size_t count_non_manifold_soup_vertices(PolygonRange& polygons, std::size_t
     // the fan of the first polygon keeps v; every other fan gets a new point
     std::map<std::size_t, std::size_t> fan_vertex;   // root -> vertex index
     fan_vertex[find(0)] = v;
-    for(std::size_t i = 0; i < inc.size(); ++i) {
+    for(std::size_t i = 0; i < m; ++i) {
       auto it = fan_vertex.find(find(i));
       if(it == fan_vertex.end()) {
         it = fan_vertex.emplace(find(i), points->size()).first;
@@ -308,7 +320,9 @@ Read_report read_surface_mesh(const std::string& fname, TriangleMesh& tm,
   std::vector<std::vector<std::size_t>> polygons;
   bool parsed = false;
   try {
-    parsed = CGAL::IO::read_polygon_soup(fname, points, polygons, CGAL::parameters::verbose(false));
+    // (plain ASCII OFF without iostreams, anything else by CGAL's readers: internal/plain_off.h)
+    parsed = (ext == "off" && internal::read_plain_off(fname, points, polygons)) ||
+             CGAL::IO::read_polygon_soup(fname, points, polygons, CGAL::parameters::verbose(false));
   } catch(const std::exception&) {
     parsed = false;
   }

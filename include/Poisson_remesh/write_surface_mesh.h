@@ -9,11 +9,14 @@
 #ifndef POISSON_REMESH_WRITE_SURFACE_MESH_H
 #define POISSON_REMESH_WRITE_SURFACE_MESH_H
 
+#include <Poisson_remesh/internal/plain_off.h>
 #include <Poisson_remesh/parameters.h>
 
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <iterator>
 #include <cstdio>
@@ -24,6 +27,8 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 namespace Poisson_remesh {
 
@@ -114,7 +119,23 @@ void write_surface_mesh(const std::string& filename, const PolygonMesh& tm,
   const std::filesystem::path tmp = internal::temporary_sibling(destination);
   bool ok = false;
   try {
-    ok = CGAL::IO::write_polygon_mesh(tmp.string(), tm, np.stream_precision(17));
+    if((ext == ".off" || ext == ".OFF") && std::is_same<NamedParameters, parameters::Default_named_parameters>::value) {
+      // (with no option to pass on, plain ASCII OFF without iostreams' number formatting:
+      // internal/plain_off.h; the same points and faces when read back)
+      std::vector<typename boost::property_traits<typename boost::property_map<PolygonMesh, CGAL::vertex_point_t>::const_type>::value_type> points;
+      std::vector<std::vector<std::size_t>> polygons;
+      CGAL::Polygon_mesh_processing::polygon_mesh_to_polygon_soup(tm, points, polygons);
+      std::vector<std::array<double, 3>> coordinates;
+      coordinates.reserve(points.size());
+      for(const auto& q : points) coordinates.push_back({CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())});
+      std::ofstream out(tmp, std::ios::binary);
+      if(out) {
+        internal::write_plain_off(out, coordinates, polygons);
+        out.flush();
+        ok = bool(out);
+      }
+    } else
+      ok = CGAL::IO::write_polygon_mesh(tmp.string(), tm, np.stream_precision(17));
   } catch(const std::exception&) {
     ok = false;
   }

@@ -15,6 +15,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -26,7 +27,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <limits>
 #include <random>
 #include <fstream>
 #include <map>
@@ -705,6 +711,110 @@ TEST_CASE("outputs are written atomically: a failure leaves the destination unto
   for(const auto& e : std::filesystem::directory_iterator(dir))
     if(e.path().filename().string().find(".partial-") != std::string::npos) ++leftovers;
   CHECK(leftovers == 0);
+}
+
+TEST_CASE("the plain OFF reader and writer agree with CGAL's", "[read][write]")
+{
+  const auto dir = test_support::scratch_dir("plain_off");
+  using test_support::write_text;
+  typedef std::vector<std::vector<std::size_t>> Polygons;
+  // the judge: CGAL's own reader
+  auto cgal_read = [](const std::string& file, std::vector<Point>& points, Polygons& polygons) {
+    return CGAL::IO::read_polygon_soup(file, points, polygons, CGAL::parameters::verbose(false));
+  };
+  auto same_as_cgal = [&](const std::string& file) {
+    std::vector<Point> p, q;
+    Polygons f, g;
+    const bool plain = PR::internal::read_plain_off(file, p, f);
+    REQUIRE(cgal_read(file, q, g));
+    return plain && p == q && f == g;
+  };
+  SECTION("the files it takes, it reads as CGAL does") {
+    // comments, blank lines, counts beside the keyword, tabs, CRLF, quads, exponents, COFF colours
+    CHECK(same_as_cgal(write_text(dir / "a.off", "# a comment\nOFF\n\n4 2 0\n0 0 0\n1 0 0 # the x axis\n\n0 1 0\n1e-3 .5 -2.\n3 0 1 2\n3 2 1 3\n")));
+    CHECK(same_as_cgal(write_text(dir / "b.off", "OFF 4 1 4\n0\t0\t0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")));
+    CHECK(same_as_cgal(write_text(dir / "c.off", "OFF\r\n3 1 0\r\n0.1 0.2 0.3\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n")));
+    CHECK(same_as_cgal(write_text(dir / "d.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0.5 0.5 0.5\n3 0 1 2\n")));
+  }
+  SECTION("anything else it leaves to CGAL's reader") {
+    std::vector<Point> p;
+    Polygons f;
+    auto declines = [&](const std::string& name, const std::string& text) {
+      const bool plain = PR::internal::read_plain_off(write_text(dir / name, text), p, f);
+      return !plain && p.empty() && f.empty();
+    };
+    const std::string tail = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    CHECK(declines("noff.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n"));
+    CHECK(declines("face_colour.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n"));
+    CHECK(declines("vertex_extra.off", "OFF\n3 1 0\n0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    CHECK(declines("plus.off", "OFF\n3 1 0\n+1 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    CHECK(declines("nan.off", "OFF\n3 1 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    CHECK(declines("huge.off", "OFF\n3 1 0\n1e999 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+    CHECK(declines("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"));
+    CHECK(declines("two_sided.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"));
+    CHECK(declines("more_faces.off", "OFF\n3 1 0\n" + tail + "3 0 2 1\n"));
+    CHECK(declines("fewer_vertices.off", "OFF\n4 1 0\n" + tail));
+    CHECK(declines("two_counts.off", "OFF\n3 1\n" + tail));
+    CHECK(declines("no_faces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"));
+    CHECK(declines("binary.off", "OFF BINARY\n" + std::string(12, '\0')));
+  }
+  SECTION("CGAL's data meshes it takes are read as CGAL reads them") {
+    std::size_t taken = 0, files = 0;
+    for(const auto& entry : std::filesystem::directory_iterator(data_mesh("meshes"))) {
+      if(entry.path().extension() != ".off") continue;
+      ++files;
+      std::vector<Point> p, q;
+      Polygons f, g;
+      if(!PR::internal::read_plain_off(entry.path().string(), p, f)) continue;
+      ++taken;
+      INFO(entry.path().string());
+      REQUIRE(cgal_read(entry.path().string(), q, g));
+      CHECK(p == q);
+      CHECK(f == g);
+    }
+    CHECK(taken >= files * 9 / 10);
+  }
+  SECTION("what it writes, CGAL reads back to the same doubles and faces") {
+    std::mt19937_64 rng(3);
+    std::vector<std::array<double, 3>> coordinates = {{0.1, -0.0, 1e300}, {std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::max(), 1.0 / 3}, {5e-324 * 7, 123456789.125, -2.5e-8}};
+    for(int i = 0; i < 1000; ++i) {
+      std::array<double, 3> c;
+      for(double& x : c) {
+        std::uint64_t bits = rng();
+        std::memcpy(&x, &bits, sizeof x);
+        if(!std::isfinite(x)) x = double(bits % 1000) / 7;
+      }
+      coordinates.push_back(c);
+    }
+    Polygons polygons;
+    for(std::size_t i = 0; i + 3 < coordinates.size(); i += 2) polygons.push_back({i, i + 1, i + 2});
+    polygons.push_back({0, 1, 2, 3});
+    const auto file = dir / "written.off";
+    {
+      std::ofstream os(file, std::ios::binary);
+      PR::internal::write_plain_off(os, coordinates, polygons);
+    }
+    std::vector<Point> back;
+    Polygons back_polygons;
+    REQUIRE(cgal_read(file.string(), back, back_polygons));
+    REQUIRE(back.size() == coordinates.size());
+    std::size_t exact = 0;
+    for(std::size_t i = 0; i < back.size(); ++i)
+      exact += std::size_t(back[i].x() == coordinates[i][0] && back[i].y() == coordinates[i][1] && back[i].z() == coordinates[i][2] &&
+                           std::signbit(back[i].y()) == std::signbit(coordinates[i][1]));
+    CHECK(exact == back.size());
+    CHECK(back_polygons == polygons);
+    // and write_surface_mesh, which uses it for .off without options, the same
+    const Mesh m = analytic::sphere(8, 4).to_mesh<Mesh>();
+    PR::write_surface_mesh((dir / "sphere.off").string(), m);
+    std::vector<Point> sphere;
+    Polygons sphere_faces;
+    REQUIRE(cgal_read((dir / "sphere.off").string(), sphere, sphere_faces));
+    REQUIRE(sphere.size() == num_vertices(m));
+    REQUIRE(sphere_faces.size() == num_faces(m));
+    std::size_t i = 0;
+    for(auto v : vertices(m)) CHECK(sphere[i++] == m.point(v));
+  }
 }
 
 // ------------------------------------------------------------------ sizing
