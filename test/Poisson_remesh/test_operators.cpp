@@ -743,6 +743,47 @@ TEST_CASE("the point grid finds a point within a distance exactly when there is 
   CHECK(near > 1000);
   CHECK(far > 1000);
   CHECK(grid.within(points[0], 0));
+  // the nearest point's squared distance, exact when it is within a cell (never under the nearest)
+  std::size_t exact = 0;
+  for(int i = 0; i < 2000; ++i) {
+    const Point q(1.1 * coordinate(draw), 1.1 * coordinate(draw), 0.2 * coordinate(draw));
+    double nearest = std::numeric_limits<double>::infinity();
+    for(const Point& p : points) nearest = std::min(nearest, CGAL::to_double(CGAL::squared_distance(p, q)));
+    const double found = grid.squared_distance(q);
+    CHECK(found >= nearest);
+    if(nearest <= cell * cell) { CHECK(found == nearest); ++exact; }
+  }
+  CHECK(exact > 500);
+  // a triangle within a distance of a point: small triangles (the cells around them) and ones
+  // larger than the points' spread (every point)
+  std::size_t hits = 0, misses = 0;
+  for(int i = 0; i < 1000; ++i) {
+    const double scale = i % 10 == 0 ? 3.0 : 0.1;
+    const Point a(1.1 * coordinate(draw), 1.1 * coordinate(draw), 0.2 * coordinate(draw));
+    const K::Triangle_3 t(a, a + scale * K::Vector_3(coordinate(draw), coordinate(draw), 0.1 * coordinate(draw)),
+                          a + scale * K::Vector_3(coordinate(draw), coordinate(draw), 0.1 * coordinate(draw)));
+    for(double d : {cell, 0.3 * cell}) {
+      bool any = false;
+      for(const Point& p : points) any = any || CGAL::to_double(CGAL::squared_distance(p, t)) < d * d;
+      CHECK(grid.near_triangle(t, d) == any);
+      (any ? hits : misses) += 1;
+    }
+  }
+  CHECK(hits > 100);
+  CHECK(misses > 100);
+  // cells spanning more than 2^21 along an axis (sorted on the cells themselves, not one key)
+  std::vector<Point> spread = points;
+  spread.push_back(Point(1e6, -1e6, 0));
+  const PR::internal::Near_points<Point> wide(spread, cell);
+  for(int i = 0; i < 1000; ++i) {
+    const Point q(1.1 * coordinate(draw), 1.1 * coordinate(draw), 0.2 * coordinate(draw));
+    CHECK(wide.within(q, cell) == grid.within(q, cell));
+  }
+  CHECK(wide.within(Point(1e6, -1e6, 0.5 * cell), cell));
+  // no point: nothing near
+  const PR::internal::Near_points<Point> empty(std::vector<Point>(), cell);
+  CHECK_FALSE(empty.within(points[0], cell));
+  CHECK(empty.squared_distance(points[0]) == std::numeric_limits<double>::infinity());
 }
 
 TEST_CASE("the untangling's face box grid finds every face whose box meets a box, after moves too", "[operators][intersections]")

@@ -1,6 +1,6 @@
 // Poisson_remesh/internal/near_points.h
 //
-// Points in a hash grid of cubic cells (internal): which of them lie within a cell's size of a
+// Points in a grid of cubic cells (internal): which of them lie within a cell's size of a
 // point or a triangle. Used by the remakes (internal/regrading.h, internal/local_remake.h) and the
 // fidelity insertions (Postprocessing/fidelity_insertion.h).
 
@@ -13,24 +13,77 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace Poisson_remesh {
 namespace internal {
 
-/// `points` in cells of size `cell`
+/// `points` in cells of size `cell`: the points sorted by cell in one array, and a table of the
+/// non-empty cells (open addressing) giving each cell's range in it -- no allocation per cell, which
+/// the fidelity passes build and drop several times per remesh
 template <class Point_3>
 class Near_points
 {
   typedef std::array<long long, 3> Cell;
-  struct Hash { std::size_t operator()(const Cell& c) const { return std::size_t(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL); } };
+  static std::size_t hash(const Cell& c)
+  {
+    // (the three coordinates mixed, then the bits spread: neighbouring cells land apart in the table)
+    std::uint64_t h = std::uint64_t(c[0]) * 73856093u ^ std::uint64_t(c[1]) * 19349663u ^ std::uint64_t(c[2]) * 83492791u;
+    h ^= h >> 31;
+    h *= 0xbf58476d1ce4e5b9ull;
+    h ^= h >> 29;
+    return std::size_t(h);
+  }
+  struct Slot { Cell cell; std::size_t begin = 0, end = 0; };   // (end == 0: an empty slot)
 
 public:
   Near_points(const std::vector<Point_3>& points, double cell) : cell_(cell)
   {
-    for(const Point_3& p : points) cells_[cell_of(p)].push_back(p);
+    // the points' order by cell (and by index within a cell): sorted on one 64-bit key when the
+    // cells' span fits 21 bits per axis (always, in practice), else on the cells themselves
+    const std::size_t n = points.size();
+    std::vector<Cell> point_cell(n);
+    Cell lo{{0, 0, 0}}, hi{{0, 0, 0}};
+    for(std::size_t i = 0; i < n; ++i) {
+      point_cell[i] = cell_of(points[i]);
+      for(int k = 0; k < 3; ++k) {
+        lo[k] = i == 0 ? point_cell[i][k] : std::min(lo[k], point_cell[i][k]);
+        hi[k] = i == 0 ? point_cell[i][k] : std::max(hi[k], point_cell[i][k]);
+      }
+    }
+    std::vector<std::size_t> order(n);
+    const long long fits = 1LL << 21;
+    if(hi[0] - lo[0] < fits && hi[1] - lo[1] < fits && hi[2] - lo[2] < fits) {
+      std::vector<std::pair<std::uint64_t, std::size_t>> keyed(n);
+      for(std::size_t i = 0; i < n; ++i)
+        keyed[i] = {std::uint64_t(point_cell[i][0] - lo[0]) << 42 | std::uint64_t(point_cell[i][1] - lo[1]) << 21 | std::uint64_t(point_cell[i][2] - lo[2]), i};
+      std::sort(keyed.begin(), keyed.end());
+      for(std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+    } else {
+      std::vector<std::pair<Cell, std::size_t>> keyed(n);
+      for(std::size_t i = 0; i < n; ++i) keyed[i] = {point_cell[i], i};
+      std::sort(keyed.begin(), keyed.end());
+      for(std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+    }
+    points_.reserve(n);
+    for(std::size_t i : order) points_.push_back(points[i]);
+    std::size_t cells = 0;
+    for(std::size_t i = 0; i < n; ++i) cells += (i == 0 || point_cell[order[i]] != point_cell[order[i - 1]]);
+    std::size_t size = 1;
+    while(size < 2 * cells) size *= 2;
+    table_.resize(size);
+    mask_ = size - 1;
+    number_of_cells_ = cells;
+    for(std::size_t i = 0, j = 0; i < n; i = j) {
+      const Cell& c = point_cell[order[i]];
+      while(j < n && point_cell[order[j]] == c) ++j;
+      std::size_t h = hash(c) & mask_;
+      while(table_[h].end != 0) h = (h + 1) & mask_;
+      table_[h] = Slot{c, i, j};
+    }
   }
   /// the squared distance to the nearest point when it is within one cell (else infinity)
   double squared_distance(const Point_3& p) const
@@ -52,22 +105,26 @@ public:
     const Cell lo = cell_of(box.xmin() - d, box.ymin() - d, box.zmin() - d), hi = cell_of(box.xmax() + d, box.ymax() + d, box.zmax() + d);
     const double span = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
     auto near = [&](const Point_3& q) { return CGAL::to_double(CGAL::squared_distance(q, t)) < d * d; };
-    if(span > double(cells_.size())) {   // (a triangle larger than the places' spread: every point)
-      for(const auto& kv : cells_)
-        for(const Point_3& q : kv.second) if(near(q)) return true;
+    if(span > double(number_of_cells_)) {   // (a triangle larger than the places' spread: every point)
+      for(const Point_3& q : points_) if(near(q)) return true;
       return false;
     }
     for(long long x = lo[0]; x <= hi[0]; ++x)
       for(long long y = lo[1]; y <= hi[1]; ++y)
-        for(long long z = lo[2]; z <= hi[2]; ++z) {
-          const auto it = cells_.find(Cell{{x, y, z}});
-          if(it == cells_.end()) continue;
-          for(const Point_3& q : it->second) if(near(q)) return true;
-        }
+        for(long long z = lo[2]; z <= hi[2]; ++z)
+          if(const Slot* s = find(Cell{{x, y, z}}))
+            for(std::size_t i = s->begin; i < s->end; ++i) if(near(points_[i])) return true;
     return false;
   }
 
 private:
+  const Slot* find(const Cell& c) const
+  {
+    if(table_.empty()) return nullptr;
+    for(std::size_t h = hash(c) & mask_; table_[h].end != 0; h = (h + 1) & mask_)
+      if(table_[h].cell == c) return &table_[h];
+    return nullptr;
+  }
   // stop(d2) for the squared distance d2 from p to each point of p's cell and of the 26 around it
   // (its own cell first: the likeliest to hold what is looked for), until stop returns true;
   // returns whether it did
@@ -76,9 +133,10 @@ private:
   {
     const Cell c = cell_of(p);
     auto in = [&](const Cell& k) {
-      const auto it = cells_.find(k);
-      if(it == cells_.end()) return false;
-      for(const Point_3& q : it->second) if(stop(CGAL::to_double(CGAL::squared_distance(p, q)))) return true;
+      const Slot* s = find(k);
+      if(s == nullptr) return false;
+      for(std::size_t i = s->begin; i < s->end; ++i)
+        if(stop(CGAL::to_double(CGAL::squared_distance(p, points_[i])))) return true;
       return false;
     };
     if(in(c)) return true;
@@ -95,7 +153,9 @@ private:
   Cell cell_of(const Point_3& p) const { return cell_of(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); }
 
   double cell_;
-  std::unordered_map<Cell, std::vector<Point_3>, Hash> cells_;
+  std::vector<Point_3> points_;   // sorted by cell
+  std::vector<Slot> table_;
+  std::size_t mask_ = 0, number_of_cells_ = 0;
 };
 
 } // namespace internal

@@ -4,18 +4,19 @@
 // three coordinates per line, one face of n indices per line) without iostreams.
 //
 // Why by hand: CGAL's OFF reader makes an istringstream per line and reads each number through
-// the stream's locale; on meshes of a few thousand vertices it took longer than the quality
-// reports (knot1's 3,200 vertices: 82 million instructions of the program's 3.3 billion, ~20 ms),
-// and its writer, 48 million. Here numbers are read with std::from_chars (correctly rounded, as
-// glibc's strtod behind the stream) and written with std::to_chars (the shortest digits that read
-// back to the same double), so a file written here reads back to the same points and faces.
+// the stream's locale, and its writer formats through the stream: a large part of the program's
+// own time around the remesh (RESULTS, "The program around the remesh"). Here numbers are read
+// with std::from_chars (correctly rounded, as glibc's strtod behind the stream) and written with
+// std::to_chars (the shortest digits that read back to the same double), so a file written here
+// reads back to the same points and faces.
 //
-// The reader takes only files it reads unambiguously: anything else -- another keyword than OFF
-// or COFF (NOFF, 4OFF, binary...), more than three numbers on a vertex line (besides COFF's colour
-// of three or four) or more than n indices on a face line (a face colour), a sign '+', a non-finite or out-of-range number, an index past the vertices, a
-// face of fewer than three vertices, no vertex or no face, text after the last face -- makes it
-// return false and leave the caller to CGAL's reader, whose results and error messages then apply
-// unchanged. '#' comments and blank lines are skipped wherever CGAL's reader skips them.
+// The reader takes only files it reads unambiguously. Anything else makes it return false and
+// leave the caller to CGAL's reader, whose results and error messages then apply unchanged:
+// another keyword than OFF or COFF (NOFF, 4OFF, binary...), more than three numbers on a vertex
+// line (besides COFF's colour of three or four), more than n indices on a face line (a face
+// colour), a sign '+', a non-finite or out-of-range number, an index past the vertices, a face of
+// fewer than three vertices, no vertex or no face, text after the last face. '#' comments and
+// blank lines are skipped wherever CGAL's reader skips them.
 
 #ifndef POISSON_REMESH_INTERNAL_PLAIN_OFF_H
 #define POISSON_REMESH_INTERNAL_PLAIN_OFF_H
