@@ -23,11 +23,12 @@ template <class Context, class Mesh>
 double ideal_valence(const Context& ctx, typename boost::graph_traits<Mesh>::vertex_descriptor v, const Mesh& m)
 {
   double sum = 0;
+  bool border = false;   // (a border vertex has a border halfedge around it: the walk tells)
   for(auto h : CGAL::halfedges_around_target(v, m)) {
-    if(is_border(h, m)) continue;
+    if(is_border(h, m)) { border = true; continue; }
     sum += ctx.angle(get(get(CGAL::vertex_point, m), source(h, m)), get(get(CGAL::vertex_point, m), v), get(get(CGAL::vertex_point, m), target(next(h, m), m)));
   }
-  return sum * 180 / CGAL_PI / 60 + (is_border(v, m) ? 1 : 0);
+  return sum * 180 / CGAL_PI / 60 + (border ? 1 : 0);
 }
 
 /// One pass of valence flips over the edges of `m` (Eq. 8). `ConcurrencyTag`: the ideal valences
@@ -41,11 +42,14 @@ void valence_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, double
   // flip changes the triangles of its four vertices alone: the others' angle sums stay)
   typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
   auto cache = get(CGAL::dynamic_vertex_property_t<double>(), m);
+  // (and the degrees, kept up to date at each flip: a flip takes an edge from p and q and gives
+  // one to r and t)
+  auto degrees = get(CGAL::dynamic_vertex_property_t<int>(), m);
   {
     const std::vector<vertex_descriptor> vs(vertices(m).begin(), vertices(m).end());
     std::vector<double> first(vs.size());
     internal::for_each_index<ConcurrencyTag>(vs.size(), [&](std::size_t i) { first[i] = ideal_valence(ctx, vs[i], m); });
-    for(std::size_t i = 0; i < vs.size(); ++i) put(cache, vs[i], first[i]);
+    for(std::size_t i = 0; i < vs.size(); ++i) { put(cache, vs[i], first[i]); put(degrees, vs[i], int(degree(vs[i], m))); }
   }
   auto ideal = [&](vertex_descriptor v) {
     double o = get(cache, v);
@@ -56,7 +60,7 @@ void valence_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, double
     if(is_feature(e) || is_border(e, m)) continue;
     auto h = halfedge(e, m);
     const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
-    const double dp = double(degree(p, m)), dq = double(degree(q, m)), dr = double(degree(r, m)), dt = double(degree(t, m));
+    const double dp = get(degrees, p), dq = get(degrees, q), dr = get(degrees, r), dt = get(degrees, t);
     const double op = ideal(p), oq = ideal(q), orr = ideal(r), ot = ideal(t);
     auto sq = [](double x) { return x * x; };
     const double before = sq(dp - op) + sq(dq - oq) + sq(dr - orr) + sq(dt - ot);
@@ -66,6 +70,10 @@ void valence_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, double
     if(!ctx.flip_is_safe(h, m, cos_max)) continue;
     CGAL::Euler::flip_edge(h, m);
     for(auto x : {p, q, r, t}) put(cache, x, -1.0);
+    put(degrees, p, get(degrees, p) - 1);
+    put(degrees, q, get(degrees, q) - 1);
+    put(degrees, r, get(degrees, r) + 1);
+    put(degrees, t, get(degrees, t) + 1);
     ++stats.valence_flips;
   }
 }

@@ -329,10 +329,13 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       // opposite one takes this cell in its own turn), found in an open-addressing table of the
       // occupied cells
       std::size_t table_size = 16;
-      while(table_size < 2 * cells.size()) table_size *= 2;
+      int table_bits = 4;
+      while(table_size < 2 * cells.size()) { table_size *= 2; ++table_bits; }
       const std::uint32_t empty = (std::numeric_limits<std::uint32_t>::max)();
       std::vector<std::uint32_t> table(table_size, empty);
-      auto slot = [&](std::uint64_t key) { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & (table_size - 1); };
+      // (Fibonacci hashing: the product's top bits, which every bit of the key reaches; its middle
+      // bits would not depend on x, the key's top bits, and a row of cells along x would share a slot)
+      auto slot = [&](std::uint64_t key) { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> (64 - table_bits)); };
       for(std::uint32_t c = 0; c < cells.size(); ++c) {
         std::size_t s = slot(cells[c].key);
         while(table[s] != empty) s = (s + 1) & (table_size - 1);

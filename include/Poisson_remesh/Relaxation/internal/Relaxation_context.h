@@ -259,10 +259,13 @@ public:
   template <class Mesh>
   static int irregular_change(typename boost::graph_traits<Mesh>::halfedge_descriptor h, const Mesh& m)
   {
-    auto irregular = [&](auto v, int change) { return int(degree(v, m)) + change != (is_border(v, m) ? 4 : 6) ? 1 : 0; };
+    // (each vertex's degree and border test once: both walk around it)
+    auto shift = [&](auto v, int change) {
+      const int d = int(degree(v, m)), regular = is_border(v, m) ? 4 : 6;
+      return int(d + change != regular) - int(d != regular);
+    };
     const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
-    return irregular(p, -1) + irregular(q, -1) + irregular(r, 1) + irregular(t, 1)
-         - (irregular(p, 0) + irregular(q, 0) + irregular(r, 0) + irregular(t, 0));
+    return shift(p, -1) + shift(q, -1) + shift(r, 1) + shift(t, 1);
   }
   // the smallest angle of the two triangles of h, and of the two a flip of h would make
   template <class Mesh>
