@@ -528,13 +528,13 @@ private:
 // the reference's self-intersecting face pairs, and those of tm's (`pairs`) that are not near them: a pair of tm is
 // near when both its triangles' centroids are within two mean edge lengths of tm of a triangle
 // of the reference that cuts another
-template <class ConcurrencyTag, class TriangleMesh, class VPM, class ReferenceMesh>
+template <class TriangleMesh, class VPM, class ReferenceMesh>
 void fill_self_intersections_away_from_reference_ones(
   const TriangleMesh& tm, VPM vpm, const ReferenceMesh& ref,
   const std::vector<std::pair<typename boost::graph_traits<TriangleMesh>::face_descriptor, typename boost::graph_traits<TriangleMesh>::face_descriptor>>& pairs,
   Quality_report& r)
 {
-  const Reference_crossings<ReferenceMesh> crossings(ref, CGAL::Sequential_tag());   // (as in quality_report_of)
+  const Reference_crossings<ReferenceMesh> crossings(ref);   // (sequential, as in quality_report_of)
   r.number_of_reference_self_intersecting_face_pairs = crossings.number_of_pairs;
   if(crossings.number_of_pairs == 0) {
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = r.number_of_self_intersecting_face_pairs;
@@ -617,15 +617,13 @@ std::pair<double, double> sampled_one_sided_hausdorff(const Mesh& a, VPM vpm, co
   for(std::size_t i = 0; i < vs.size(); ++i) put(index, vs[i], i);
   // (each element's squared distance in its own slot, the largest taken after: any order of the
   // threads gives the same figure)
-  std::vector<Point> nearest(vs.size());
   std::vector<face_b> nearest_face(vs.size());
   std::vector<double> dv(vs.size()), longest(fs.size());
   for_each_index<ConcurrencyTag>(vs.size(), [&](std::size_t i) {
     const Point p = get(vpm, vs[i]);
     const auto hit = tree.closest_point_and_primitive(p);
-    nearest[i] = hit.first;
     nearest_face[i] = hit.second;
-    dv[i] = CGAL::to_double(CGAL::squared_distance(p, nearest[i]));
+    dv[i] = CGAL::to_double(CGAL::squared_distance(p, hit.first));
   });
   // (the largest vertex distance: a midpoint or centroid nearer than it cannot raise the figure)
   double lower = 0, cover = 0;
@@ -816,7 +814,7 @@ Quality_report quality_report(const TriangleMesh& tm, const ReferenceMesh& refer
     r.number_of_reference_self_intersecting_face_pairs = known;
     r.number_of_self_intersecting_face_pairs_away_from_reference_ones = 0;
   } else if(r.self_intersections_checked)
-    internal::fill_self_intersections_away_from_reference_ones<ConcurrencyTag>(tm, vpm, reference, pairs, r);
+    internal::fill_self_intersections_away_from_reference_ones(tm, vpm, reference, pairs, r);
   return r;
 }
 

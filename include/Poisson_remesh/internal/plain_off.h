@@ -3,7 +3,7 @@
 // Reading and writing the plain ASCII form of OFF (the "OFF" keyword, the counts, one vertex of
 // three coordinates per line, one face of n indices per line) without iostreams.
 //
-// Why by hand: CGAL's OFF reader makes an istringstream per line and reads each number through
+// Why not CGAL's: its OFF reader makes an istringstream per line and reads each number through
 // the stream's locale, and its writer formats through the stream: a large part of the program's
 // own time around the remesh (RESULTS, "The program around the remesh"). Here numbers are read
 // with std::from_chars (correctly rounded, as glibc's strtod behind the stream) and written with

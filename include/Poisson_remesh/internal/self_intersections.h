@@ -328,9 +328,9 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       // each cell against itself and one neighbour of each opposite pair (13 of its 26: the
       // opposite one takes this cell in its own turn), found in an open-addressing table of the
       // occupied cells
-      std::size_t table_size = 16;
       int table_bits = 4;
-      while(table_size < 2 * cells.size()) { table_size *= 2; ++table_bits; }
+      while((std::size_t(1) << table_bits) < 2 * cells.size()) ++table_bits;
+      const std::size_t table_size = std::size_t(1) << table_bits;
       const std::uint32_t empty = (std::numeric_limits<std::uint32_t>::max)();
       std::vector<std::uint32_t> table(table_size, empty);
       // (Fibonacci hashing: the product's top bits, which every bit of the key reaches; its middle
