@@ -214,6 +214,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
   Relaxation_times seconds_by_step;
   unsigned int regraded = 0;
   std::size_t first_count = 0;   // (the first attempt's vertices)
+  unsigned int attempts_without_gain = 0;   // (attempts in a row that did not beat the best)
   // the pointed tips (the last corners of the feature set)
   std::vector<Point_3> tips;
   for(std::size_t i = detected_features.corners.size() - detected_features.number_of_tips; i < detected_features.corners.size(); ++i)
@@ -355,9 +356,11 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     // (the check, the copy of the best attempt and the new radii count with the relaxation)
     const auto places = internal::regrading_places<ConcurrencyTag>(output, input, is_fixed, is_tip, input_crossings, regrading);
     if(attempt == 0) first_count = num_vertices(output);
-    const bool last = !places.remake_wanted(attempt == 0 ? nullptr : &previous_places) || attempt >= regrading_attempts ||
-                      double(num_vertices(output)) > regrading.max_growth * double(first_count);
+    const bool last_by_fault = !places.remake_wanted(attempt == 0 ? nullptr : &previous_places) || attempt >= regrading_attempts ||
+                               double(num_vertices(output)) > regrading.max_growth * double(first_count);
     output_is_best = attempt == 0 || places.better_than(best_places);
+    attempts_without_gain = output_is_best ? 0 : attempts_without_gain + 1;
+    const bool last = last_by_fault || internal::remakes_stop_for_want_of_gain(attempts_without_gain, best_places, regrading);
     // (a result that cuts itself is made again whole: the crossings of a crumpled input follow its
     // pleats, features and all, beyond any one region)
     const bool remake_locally = use_local_remakes && attempt == 0 && places.crossing_pairs == 0;

@@ -210,6 +210,33 @@ TEST_CASE("femur: a crumpled input is remeshed again, finer where the result fol
   CHECK(double(b.number_of_vertices) <= 1.3 * a.number_of_vertices);
 }
 
+TEST_CASE("remakes that do not beat the best attempt twice in a row stop, unless the best cuts itself", "[remesh][regrading]")
+{
+  const PR::internal::Regrading_settings settings;
+  REQUIRE(settings.max_attempts_without_gain == 2);
+  PR::internal::Regrading_places<Point> best;
+  best.min_angle_away = 25;
+  best.sharp = 3;
+  CHECK_FALSE(PR::internal::remakes_stop_for_want_of_gain(0, best, settings));   // the last attempt was the best
+  CHECK_FALSE(PR::internal::remakes_stop_for_want_of_gain(1, best, settings));
+  CHECK(PR::internal::remakes_stop_for_want_of_gain(2, best, settings));          // twice no gain: stop
+  best.crossing_pairs = 1;
+  CHECK_FALSE(PR::internal::remakes_stop_for_want_of_gain(5, best, settings));   // a crossing is worth every attempt
+  // spool at its own count, seed 1: the remakes gain at first, then twice not, and stop before
+  // the sixth (the default limit); the best attempt is kept
+  Mesh in;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/spool.off"), in);
+  Mesh out;
+  const auto run = PR::poisson_remesh(in, out, PR::parameters::random_seed(1u));
+  CHECK(run.number_of_regrading_attempts >= 2);
+  CHECK(run.number_of_regrading_attempts < 6);
+  CHECK(run.crossing_pairs_left == 0);
+  const PR::Quality_report b = PR::quality_report(out, in);
+  CHECK(b.euler_characteristic == PR::quality_report(in).euler_characteristic);
+  REQUIRE(b.min_angle_away_from_sharp_corners);
+  CHECK(*b.min_angle_away_from_sharp_corners == Approx(run.min_angle_away_from_corners).margin(1e-6));
+}
+
 TEST_CASE("a fault that a new draw reproduces is not remade again", "[remesh][regrading]")
 {
   // a result at fault with no place to regrade (no crossing; its triangles under 30 degrees all

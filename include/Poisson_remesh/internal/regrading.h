@@ -30,6 +30,10 @@
 // No remake follows an attempt with no place to sample finer that left the very same fault as
 // the attempt before it (Regrading_places::remake_wanted): a fault that a new draw reproduces
 // does not depend on the draw.
+// Nor does one follow `max_attempts_without_gain` attempts in a row that did not beat the best
+// attempt so far, when the best cuts itself nowhere (remakes_stop_for_want_of_gain): a sharp
+// triangle that finer radii and new draws have not mended twice is seldom mended by the next
+// remakes, each of which costs a whole remesh; a crossing is worth every attempt.
 
 
 #ifndef POISSON_REMESH_INTERNAL_REGRADING_H
@@ -67,6 +71,10 @@ struct Regrading_settings
   /// radii around a few places at fault are to mend them, not to turn into a much finer mesh
   /// (where nearly every place is at fault, each remake would make the whole mesh finer)
   double max_growth = 1.5;
+  /// no remake after this many attempts in a row that did not beat the best one so far, when the
+  /// best cuts itself nowhere: finer radii and new draws that have not mended a sharp triangle
+  /// that many times are not worth the time of the others (0: no such limit)
+  unsigned int max_attempts_without_gain = 2;
 };
 
 /// The places of a remesh to regrade: see the file's comment. `is_fixed(v)` tells the output's
@@ -112,6 +120,14 @@ struct Regrading_places
     return sharp < o.sharp;
   }
 };
+
+/// Whether the remakes stop for want of gain: `without_gain` attempts in a row have not beaten
+/// `best`, the best attempt so far, which cuts itself nowhere (see the file's comment).
+template <class Point_3>
+bool remakes_stop_for_want_of_gain(unsigned int without_gain, const Regrading_places<Point_3>& best, const Regrading_settings& s)
+{
+  return s.max_attempts_without_gain > 0 && without_gain >= s.max_attempts_without_gain && best.crossing_pairs == 0;
+}
 
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class InputMesh, class IsFixed, class IsTip,
           class Point_3 = typename boost::property_traits<typename boost::property_map<TriangleMesh, CGAL::vertex_point_t>::const_type>::value_type>
