@@ -453,7 +453,8 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
   a result that cuts itself, or keeps a smallest angle
   under 30 degrees away from the input's sharp corners -- an input crumpled finer than the
   spacing -- is remeshed again, at most this many times, with the sampling finer around the
-  places at fault and a new draw; the best result is kept: see internal/regrading.h) and
+  places at fault and a new draw, until two attempts in a row do not beat the best one (when it
+  cuts itself nowhere); the best result is kept: see internal/regrading.h) and
   `sampler` (a model of the Sampler concept, default Poisson_disk_sampler: see
   doc/Poisson_remesh/Concepts/Sampler.h), `geodesic_oracle` (the default sampler's oracle, a model of
   GeodesicOracle built on `input`),
