@@ -675,6 +675,10 @@ TEST_CASE("the crossing search finds CGAL's pairs, with its grid and star tests 
         const auto first = PR::internal::intersecting_face_pairs(mesh, *range, get(CGAL::vertex_point, mesh), 3);
         CHECK(first.size() == 3);
         for(const Pair& p : first) CHECK(std::binary_search(expected.begin(), expected.end(), p));
+#ifdef CGAL_LINKED_WITH_TBB
+        // (the parallel search takes its candidates in the same order: the same first pairs)
+        CHECK(PR::internal::intersecting_face_pairs<CGAL::Parallel_tag>(mesh, *range, get(CGAL::vertex_point, mesh), 3) == first);
+#endif
       }
     }
   };
@@ -688,6 +692,12 @@ TEST_CASE("the crossing search finds CGAL's pairs, with its grid and star tests 
   for(V v : vertices(pushed))   // (past a neighbour, its star folded over the neighbour's)
     if(++k % 29 == 0) pushed.point(v) = pushed.point(v) + 1.6 * (pushed.point(source(halfedge(v, pushed), pushed)) - pushed.point(v));
   compare(pushed, 10);
+  // a finer sphere so folded: more occupied grid cells than the parallel search takes in one group
+  Mesh fine = analytic::sphere(160, 80).to_mesh<Mesh>();
+  k = 0;
+  for(V v : vertices(fine))
+    if(++k % 97 == 0) fine.point(v) = fine.point(v) + 1.6 * (fine.point(source(halfedge(v, fine), fine)) - fine.point(v));
+  compare(fine, 50);
   analytic::Soup two = ball;
   for(const auto& p : ball.points) two.points.push_back({p[0] + 0.6, p[1] + 0.3, p[2]});
   for(const auto& t : ball.triangles) two.triangles.push_back({t[0] + ball.points.size(), t[1] + ball.points.size(), t[2] + ball.points.size()});

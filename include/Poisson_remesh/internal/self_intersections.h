@@ -24,8 +24,9 @@
 //   faces the grid touches fewer boxes.) On faces of very unequal sizes the grid would crowd, and
 //   CGAL's box sweep (box_self_intersection_d) gives the candidates instead.
 // The faces' pairs are the same as CGAL's (the tests compare both on meshes that cut themselves);
-// only the work differs. With CGAL::Parallel_tag the exact tests run in parallel; the pairs and
-// their order do not depend on the number of threads.
+// only the work differs. With CGAL::Parallel_tag the faces' boxes, the star tests, the grid's
+// candidate pairs (by runs of cells, taken in in the cells' order) and the exact tests run in
+// parallel; the pairs and their order do not depend on the number of threads.
 
 #ifndef POISSON_REMESH_INTERNAL_SELF_INTERSECTIONS_H
 #define POISSON_REMESH_INTERNAL_SELF_INTERSECTIONS_H
@@ -189,22 +190,34 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
   };
 
   // the faces' boxes; a zero-area face is a pair with itself and has no box (as in CGAL)
-  std::vector<face_descriptor> fs;
-  std::vector<CGAL::Bbox_3> boxes;
-  std::vector<std::array<vertex_descriptor, 3>> corners;
-  for(face_descriptor f : range) {
-    const auto h = halfedge(f, m);
-    const std::array<vertex_descriptor, 3> c = {target(h, m), target(next(h, m), m), source(h, m)};
-    const auto &p = get(vpm, c[0]), &q = get(vpm, c[1]), &r = get(vpm, c[2]);
-    if(CGAL::collinear(p, q, r)) {
-      out.emplace_back(f, f);
+  // (each face's corners, box and zero-area test at once with CGAL::Parallel_tag, then taken in
+  // in the order of `range`)
+  std::vector<face_descriptor> fs(std::begin(range), std::end(range));
+  std::vector<CGAL::Bbox_3> boxes(fs.size());
+  std::vector<std::array<vertex_descriptor, 3>> corners(fs.size());
+  std::vector<std::int8_t> flat(fs.size());
+  for_each_index<ConcurrencyTag>(fs.size(), [&](std::size_t i) {
+    const auto h = halfedge(fs[i], m);
+    corners[i] = {target(h, m), target(next(h, m), m), source(h, m)};
+    const auto &p = get(vpm, corners[i][0]), &q = get(vpm, corners[i][1]), &r = get(vpm, corners[i][2]);
+    flat[i] = CGAL::collinear(p, q, r) ? 1 : 0;
+    if(!flat[i]) boxes[i] = p.bbox() + q.bbox() + r.bbox();
+  });
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < fs.size(); ++i) {
+    if(flat[i]) {
+      out.emplace_back(fs[i], fs[i]);
       if(out.size() == bound) return finish();
       continue;
     }
-    fs.push_back(f);
-    corners.push_back(c);
-    boxes.push_back(p.bbox() + q.bbox() + r.bbox());
+    fs[kept] = fs[i];
+    corners[kept] = corners[i];
+    boxes[kept] = boxes[i];
+    ++kept;
   }
+  fs.resize(kept);
+  corners.resize(kept);
+  boxes.resize(kept);
   const std::size_t n = fs.size();
   if(n < 2) return finish();
 
@@ -302,18 +315,23 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
     candidates.clear();
     if(out.size() >= bound) throw Bound_reached();
   };
-  auto consider_meeting = [&](std::uint32_t a, std::uint32_t b) {
+  // (whether a pair sharing a safe corner can be left out; reads only)
+  auto shares_safe_corner = [&](std::uint32_t a, std::uint32_t b) {
     for(int k = 0; k < 3; ++k)
       if(corner_safe[a][k])
-        for(int l = 0; l < 3; ++l) if(corners[a][k] == corners[b][l]) return;
+        for(int l = 0; l < 3; ++l) if(corners[a][k] == corners[b][l]) return true;
+    return false;
+  };
+  auto boxes_meet = [&](std::uint32_t a, std::uint32_t b) {
+    const CGAL::Bbox_3 &x = boxes[a], &y = boxes[b];
+    return !(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin());
+  };
+  auto take = [&](std::uint32_t a, std::uint32_t b) {
     candidates.emplace_back(a, b);
     if(candidates.size() == block) flush();
   };
-  auto consider = [&](std::uint32_t a, std::uint32_t b) {
-    const CGAL::Bbox_3 &x = boxes[a], &y = boxes[b];
-    if(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin()) return;
-    consider_meeting(a, b);
-  };
+  auto consider_meeting = [&](std::uint32_t a, std::uint32_t b) { if(!shares_safe_corner(a, b)) take(a, b); };
+  auto consider = [&](std::uint32_t a, std::uint32_t b) { if(boxes_meet(a, b)) consider_meeting(a, b); };
   try {
     if(!grid) {
       typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS> Box;
@@ -350,17 +368,39 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       static const int one_of_each_pair[13][3] = {{1, 0, 0}, {1, 1, 0},  {1, -1, 0}, {0, 1, 0},  {1, 0, 1},   {1, 1, 1}, {1, -1, 1},
                                                   {0, 1, 1}, {0, 0, 1},  {-1, 1, 1}, {-1, 0, 1}, {-1, -1, 1}, {0, -1, 1}};
       const std::uint64_t mask = (std::uint64_t(1) << 21) - 1;
-      for(const Cell& c : cells) {
+      // the candidate pairs of a cell, in the order the whole search takes them (reads only)
+      auto cell_pairs = [&](const Cell& c, auto emit) {
         for(std::uint32_t i = c.first; i < c.end; ++i)
-          for(std::uint32_t j = i + 1; j < c.end; ++j) consider(filed[i].second, filed[j].second);
+          for(std::uint32_t j = i + 1; j < c.end; ++j)
+            if(boxes_meet(filed[i].second, filed[j].second) && !shares_safe_corner(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
         const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
         for(const auto& d : one_of_each_pair) {
           const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
           const Cell* other = find(key);
           if(other == nullptr) continue;
           for(std::uint32_t i = c.first; i < c.end; ++i)
-            for(std::uint32_t j = other->first; j < other->end; ++j) consider(filed[i].second, filed[j].second);
+            for(std::uint32_t j = other->first; j < other->end; ++j)
+              if(boxes_meet(filed[i].second, filed[j].second) && !shares_safe_corner(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
         }
+      };
+      if constexpr(is_parallel<ConcurrencyTag>()) {
+        // (the cells a group at a time, each group's runs of cells by TBB's threads into lists of
+        // their own, taken in in the cells' order: the same candidates in the same order as in
+        // sequence, and a search that reaches `bound` stops within a group)
+        const std::size_t run = 64, group = 64 * run;
+        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found((group + run - 1) / run);
+        for(std::size_t g = 0; g < cells.size(); g += group) {
+          const std::size_t runs = ((std::min)(cells.size(), g + group) - g + run - 1) / run;
+          for_each_index<ConcurrencyTag>(runs, [&](std::size_t r) {
+            found[r].clear();
+            const std::size_t first = g + r * run, end = (std::min)(cells.size(), first + run);
+            for(std::size_t c = first; c < end; ++c) cell_pairs(cells[c], [&](std::uint32_t a, std::uint32_t b) { found[r].emplace_back(a, b); });
+          }, 1);
+          for(std::size_t r = 0; r < runs; ++r)
+            for(const auto& ab : found[r]) take(ab.first, ab.second);
+        }
+      } else {
+        for(const Cell& c : cells) cell_pairs(c, take);
       }
       // the few big faces against every box (each big pair once)
       for(std::size_t k = 0; k < big.size(); ++k) {

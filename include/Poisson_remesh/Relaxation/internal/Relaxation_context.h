@@ -97,14 +97,18 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
           for(std::int64_t z = index(b.zmin(), 2); z <= index(b.zmax(), 2); ++z) grid[key(x, y, z)].push_back(k);
     }
     const std::int64_t last[3] = {index(all_mine.xmax(), 0), index(all_mine.ymax(), 1), index(all_mine.zmax(), 2)};
-    for(face_descriptor f : faces(m)) {
+    // (each face at once with CGAL::Parallel_tag, the grid only read; taken in in the faces' order)
+    const std::vector<face_descriptor> all(faces(m).begin(), faces(m).end());
+    std::vector<std::int8_t> is_near(all.size(), 0);
+    for_each_index<ConcurrencyTag>(all.size(), [&](std::size_t i) {
+      const face_descriptor f = all[i];
       const CGAL::Bbox_3 b = box_of(f).bbox();
-      if(!CGAL::do_overlap(b, all_mine)) continue;
+      if(!CGAL::do_overlap(b, all_mine)) return;
       std::int64_t lo[3], hi[3], cells = 1;
-      for(int i = 0; i < 3; ++i) {
-        lo[i] = (std::max)(std::int64_t(0), index(b.min(i), i));
-        hi[i] = (std::min)(last[i], index(b.max(i), i));
-        cells *= hi[i] - lo[i] + 1;
+      for(int d = 0; d < 3; ++d) {
+        lo[d] = (std::max)(std::int64_t(0), index(b.min(d), d));
+        hi[d] = (std::min)(last[d], index(b.max(d), d));
+        cells *= hi[d] - lo[d] + 1;
       }
       bool meets = false;
       if(cells > 64) {   // (a face much larger than the changed ones: against each of them)
@@ -118,8 +122,9 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
               for(std::size_t k : it->second) if((meets = CGAL::do_overlap(b, mine[k].bbox()))) break;
             }
       }
-      if(meets) near.push_back(f);
-    }
+      is_near[i] = meets ? 1 : 0;
+    });
+    for(std::size_t i = 0; i < all.size(); ++i) if(is_near[i]) near.push_back(all[i]);
   }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
