@@ -12,6 +12,7 @@
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/internal/closest_point.h>
 #include <Poisson_remesh/internal/near_points.h>
+#include <Poisson_remesh/internal/radix_sort.h>
 #include <Poisson_remesh/internal/vector_angle.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -30,6 +31,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <vector>
@@ -729,6 +732,26 @@ TEST_CASE("the crossing search finds CGAL's pairs, with its grid and star tests 
   // the grid and star tests were what ran on the meshes of near-equal faces, crossings found too
   CHECK(grid_runs >= 8);
   CHECK(crossing_grid_runs >= 6);
+}
+
+// The grids sort their (cell key, index) pairs, made in index order, by a stable radix sort
+// (internal/radix_sort.h): judged against std::sort of the pairs.
+TEST_CASE("the grids' radix sort orders (key, index) pairs as std::sort does", "[operators][intersections]")
+{
+  std::mt19937_64 draw(11);
+  // keys of every bit, keys with many ties, keys that differ in their top bytes alone, one key
+  const std::function<std::uint64_t()> kinds[] = {
+      [&] { return std::uint64_t(draw()); }, [&] { return std::uint64_t(draw() % 7); },
+      [&] { return std::uint64_t(draw() % 5) << 50 | 0x1234; }, [&] { return std::uint64_t(42); }};
+  for(const auto& key : kinds)
+    for(std::size_t n : {0, 1, 2, 37, 5000}) {
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> v;
+      for(std::uint32_t i = 0; i < n; ++i) v.emplace_back(key(), i);
+      auto expected = v;
+      std::sort(expected.begin(), expected.end());
+      PR::internal::stable_sort_by_key(v);
+      CHECK(v == expected);
+    }
 }
 
 TEST_CASE("the point grid finds a point within a distance exactly when there is one", "[operators][fidelity]")

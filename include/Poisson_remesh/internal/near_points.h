@@ -7,6 +7,7 @@
 #ifndef POISSON_REMESH_INTERNAL_NEAR_POINTS_H
 #define POISSON_REMESH_INTERNAL_NEAR_POINTS_H
 
+#include <Poisson_remesh/internal/radix_sort.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/squared_distance_3.h>
 
@@ -60,7 +61,7 @@ public:
       std::vector<std::pair<std::uint64_t, std::size_t>> keyed(n);
       for(std::size_t i = 0; i < n; ++i)
         keyed[i] = {std::uint64_t(point_cell[i][0] - lo[0]) << 42 | std::uint64_t(point_cell[i][1] - lo[1]) << 21 | std::uint64_t(point_cell[i][2] - lo[2]), i};
-      std::sort(keyed.begin(), keyed.end());
+      stable_sort_by_key(keyed);   // (made in index order: std::sort's order of the pairs)
       for(std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
     } else {
       std::vector<std::pair<Cell, std::size_t>> keyed(n);

@@ -32,6 +32,7 @@
 #define POISSON_REMESH_INTERNAL_SELF_INTERSECTIONS_H
 
 #include <Poisson_remesh/internal/parallel.h>
+#include <Poisson_remesh/internal/radix_sort.h>
 
 #include <CGAL/Bbox_3.h>
 #include <CGAL/box_intersection_d.h>
@@ -249,7 +250,7 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
                         z = coordinate(0.5 * (b.zmin() + b.zmax()), all.zmin());
     filed.emplace_back((x << 42) | (y << 21) | z, i);
   }
-  std::sort(filed.begin(), filed.end());
+  stable_sort_by_key(filed);   // (filed in index order: std::sort's order of the pairs)
   // the occupied cells: (key, first, end) in `filed`
   struct Cell { std::uint64_t key; std::uint32_t first, end; };
   std::vector<Cell> cells;
