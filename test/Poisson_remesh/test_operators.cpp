@@ -695,8 +695,9 @@ TEST_CASE("the crossing search finds CGAL's pairs, with its grid and star tests 
   for(V v : vertices(pushed))   // (past a neighbour, its star folded over the neighbour's)
     if(++k % 29 == 0) pushed.point(v) = pushed.point(v) + 1.6 * (pushed.point(source(halfedge(v, pushed), pushed)) - pushed.point(v));
   compare(pushed, 10);
-  // a finer sphere so folded: more occupied grid cells than the parallel search takes in one group
-  Mesh fine = analytic::sphere(160, 80).to_mesh<Mesh>();
+  // a finer sphere so folded: more occupied grid cells (5,714) than the parallel search takes in
+  // one group (4,096)
+  Mesh fine = analytic::sphere(240, 120).to_mesh<Mesh>();
   k = 0;
   for(V v : vertices(fine))
     if(++k % 97 == 0) fine.point(v) = fine.point(v) + 1.6 * (fine.point(source(halfedge(v, fine), fine)) - fine.point(v));
