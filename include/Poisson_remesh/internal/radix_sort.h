@@ -3,9 +3,8 @@
 // A stable sort of (64-bit key, index) pairs by key (internal), for the grids of the crossing
 // search (internal/self_intersections.h) and of the near points (internal/near_points.h): their
 // pairs are made in increasing index order, so a stable sort by key gives what std::sort of the
-// pairs gives, in linear time. Written by hand: std::sort of these pairs was a serial step the
-// fidelity passes and the crossing searches of the parallel mode waited for (hundreds of thousands
-// of points, several times a remesh), and neither the standard library nor CGAL has a radix sort.
+// pairs gives, in linear time. Written by hand, as neither the standard library nor CGAL has a
+// radix sort: the grids are sorted on one thread, which the parallel mode's others wait for.
 
 #ifndef POISSON_REMESH_INTERNAL_RADIX_SORT_H
 #define POISSON_REMESH_INTERNAL_RADIX_SORT_H

@@ -323,16 +323,18 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
         for(int l = 0; l < 3; ++l) if(corners[a][k] == corners[b][l]) return true;
     return false;
   };
-  auto boxes_meet = [&](std::uint32_t a, std::uint32_t b) {
+  // (whether a pair of the grid's is a candidate: its boxes meet, and no safe corner leaves it out)
+  auto is_candidate = [&](std::uint32_t a, std::uint32_t b) {
     const CGAL::Bbox_3 &x = boxes[a], &y = boxes[b];
-    return !(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin());
+    if(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin()) return false;
+    return !shares_safe_corner(a, b);
   };
   auto take = [&](std::uint32_t a, std::uint32_t b) {
     candidates.emplace_back(a, b);
     if(candidates.size() == block) flush();
   };
   auto consider_meeting = [&](std::uint32_t a, std::uint32_t b) { if(!shares_safe_corner(a, b)) take(a, b); };
-  auto consider = [&](std::uint32_t a, std::uint32_t b) { if(boxes_meet(a, b)) consider_meeting(a, b); };
+  auto consider = [&](std::uint32_t a, std::uint32_t b) { if(is_candidate(a, b)) take(a, b); };
   try {
     if(!grid) {
       typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS> Box;
@@ -373,7 +375,7 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       auto cell_pairs = [&](const Cell& c, auto emit) {
         for(std::uint32_t i = c.first; i < c.end; ++i)
           for(std::uint32_t j = i + 1; j < c.end; ++j)
-            if(boxes_meet(filed[i].second, filed[j].second) && !shares_safe_corner(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
+            if(is_candidate(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
         const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
         for(const auto& d : one_of_each_pair) {
           const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
@@ -381,7 +383,7 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
           if(other == nullptr) continue;
           for(std::uint32_t i = c.first; i < c.end; ++i)
             for(std::uint32_t j = other->first; j < other->end; ++j)
-              if(boxes_meet(filed[i].second, filed[j].second) && !shares_safe_corner(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
+              if(is_candidate(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
         }
       };
       if constexpr(is_parallel<ConcurrencyTag>()) {
