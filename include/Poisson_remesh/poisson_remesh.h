@@ -252,7 +252,7 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     progress.set_span(0.3, 0.4);
     progress("tessellation", 0, 1);
     clear(output);
-    const auto tessellation = mutual_tessellation(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
+    const auto tessellation = mutual_tessellation<ConcurrencyTag>(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
     result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
     result.number_of_merged_samples = tessellation.merged_samples.size();
     seconds[1] += since(t);

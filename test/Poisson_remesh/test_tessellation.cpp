@@ -276,3 +276,47 @@ TEST_CASE("the tessellation's smallest angle of a triangle is the least of its t
   }
   CHECK(checked == 60000);
 }
+
+TEST_CASE("the flips' tangent of the smallest angle turns down only what the angles turn down", "[tessellation]")
+{
+  // the flips turn an edge down without its angles when the new triangles' least tangent is no
+  // larger than the old ones': judged by the law of cosines, that must never turn down a pair
+  // whose angles differ by more than the flips' 1e-9; a triangle without a positive cosine at
+  // that corner (here: three equal points) has a NaN tangent, and its angle is left to atan2
+  typedef std::array<double, 3> V;
+  auto corner = [](const V& o, const V& a, const V& b) {
+    double ab = 0, oa = 0, ob = 0;
+    for(int i = 0; i < 3; ++i) {
+      ab += (a[i] - b[i]) * (a[i] - b[i]);
+      oa += (a[i] - o[i]) * (a[i] - o[i]);
+      ob += (b[i] - o[i]) * (b[i] - o[i]);
+    }
+    return std::acos(std::max(-1.0, std::min(1.0, (oa + ob - ab) / (2 * std::sqrt(oa * ob)))));
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto triangle = [&](int k, V* p) {
+    for(int i = 0; i < 3; ++i) p[i] = {u(rng), u(rng), u(rng)};
+    if(k % 5 == 1) p[2] = {0.5 * (p[0][0] + p[1][0]) + 1e-4 * u(rng), 0.5 * (p[0][1] + p[1][1]), 0.5 * (p[0][2] + p[1][2])};   // flat
+    if(k % 5 == 2) p[2] = {p[0][0] + 1e-4 * u(rng), p[0][1] + 1e-4 * u(rng), p[0][2]};                                           // needle
+    if(k % 5 == 3) p[1] = p[2] = p[0];                                                                                            // a point
+  };
+  std::size_t turned_down = 0, nan = 0;
+  for(int k = 0; k < 20000; ++k) {
+    V p[3], q[3];
+    triangle(k, p);
+    triangle(k / 5, q);
+    const double tp = PR::internal::smallest_angle_tangent(p[0], p[1], p[2]), tq = PR::internal::smallest_angle_tangent(q[0], q[1], q[2]);
+    auto least = [&](const V* x) { return std::min({corner(x[0], x[1], x[2]), corner(x[1], x[2], x[0]), corner(x[2], x[0], x[1])}); };
+    if(std::isnan(tp)) { ++nan; REQUIRE(k % 5 == 3); continue; }
+    REQUIRE(tp >= 0);
+    REQUIRE(std::atan(tp) == Approx(least(p)).margin(1e-6));
+    if(std::isnan(tq)) continue;
+    if(tp <= tq) {
+      ++turned_down;
+      REQUIRE(least(p) <= least(q) + 1e-9);
+    }
+  }
+  CHECK(nan == 4000);
+  CHECK(turned_down > 5000);
+}

@@ -25,7 +25,9 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <algorithm>
+#include <atomic>
 #include <limits>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <vector>
@@ -68,9 +70,17 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   auto in_vpm = get(CGAL::vertex_point, ctx.input());
   const double tol = s.max_deviation * ctx.diagonal();
   if(!(tol > 0) || faces(m).empty()) return 0;
-  Tree tree(faces(m).first, faces(m).second, m);
-  tree.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
-  tree.build();
+  // the mesh's tree, built on first use and before the mesh changes (on a mesh that follows its
+  // input, the points near a point of the mesh below answer most queries, and often all of them)
+  std::optional<Tree> tree_storage;
+  auto tree = [&]() -> const Tree& {
+    if(!tree_storage) {
+      tree_storage.emplace(faces(m).first, faces(m).second, m);
+      tree_storage->do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
+      tree_storage->build();
+    }
+    return *tree_storage;
+  };
   // the input's vertices, edge midpoints and face centroids (all on the input: the distance
   // from the input to the mesh peaks inside the input's triangles as often as at its vertices)
   // (the distance queries run in parallel with CGAL::Parallel_tag; their results are taken in
@@ -90,9 +100,16 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   }
   const Poisson_remesh::internal::Near_points<Point_3> near_mesh(mesh_points, tol);
   auto distances = [&] {   // (the squared distance from each query point to the mesh, or tol^2 when near)
-    d2s.assign(queries.size(), 0);
+    d2s.assign(queries.size(), -1);
+    std::atomic<bool> far_from_points(false);
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) {
-      d2s[i] = near_mesh.within(queries[i], tol) ? tol * tol : Poisson_remesh::internal::squared_distance_to(tree, queries[i]);
+      if(near_mesh.within(queries[i], tol)) d2s[i] = tol * tol;
+      else far_from_points = true;
+    });
+    if(!far_from_points) return;
+    const Tree& t = tree();   // (built here, by this thread)
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) {
+      if(d2s[i] < 0) d2s[i] = Poisson_remesh::internal::squared_distance_to(t, queries[i]);
     });
   };
   auto take_far = [&] {
@@ -168,7 +185,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   }
   for(const auto& [d2, p] : nearest_on_input(points))
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)
-    if(d2 > tol * tol && Poisson_remesh::internal::squared_distance_to(tree, p) > tol * tol) far.push_back({d2, p});
+    if(d2 > tol * tol && Poisson_remesh::internal::squared_distance_to(tree(), p) > tol * tol) far.push_back({d2, p});
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   // (the split point, the edge's ends, and whether the edge follows a feature curve or a border)
@@ -204,6 +221,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     if(nearest[i].first > tol * tol) far_edges.push_back({nearest[i].first, nearest[i].second, source(hs[i], m), target(hs[i], m), false});
   if(far.empty() && far_edges.empty()) return 0;
   std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  if(!far.empty()) tree();   // (the tree of the mesh as it is now: the insertions below change it)
   const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);   // intersections there already
   if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
   std::set<face_descriptor> touched;
@@ -212,7 +230,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_insertions_share * double(num_vertices(m))));
   for(const auto& fp : far) {
     if(mine.size() >= cap) break;
-    const face_descriptor f = Poisson_remesh::internal::closest_point_and_primitive(tree, fp.second).second;
+    const face_descriptor f = Poisson_remesh::internal::closest_point_and_primitive(tree(), fp.second).second;
     if(touched.count(f)) continue;
     // the triangle and its neighbours take one new vertex at most
     touched.insert(f);

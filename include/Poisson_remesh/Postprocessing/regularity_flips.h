@@ -58,12 +58,34 @@ std::size_t regularity_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_featu
   const double floor = (min_angle_degrees < 0 ? s.min_angle : min_angle_degrees) * CGAL_PI / 180;
   typedef typename boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
   const int no = 99;
+  // each vertex's degree and regular degree (6, or 4 on a border), read for the four vertices of
+  // every edge looked at and kept up to date by the flips below (walking around the vertices each
+  // time was most of the round's time)
+  auto deg = get(CGAL::dynamic_vertex_property_t<int>(), m);
+  auto regular = get(CGAL::dynamic_vertex_property_t<int>(), m);
+  for(auto v : vertices(m)) {
+    put(deg, v, int(degree(v, m)));
+    put(regular, v, is_border(v, m) ? 4 : 6);
+  }
+  auto flip = [&](halfedge_descriptor h) {
+    const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
+    CGAL::Euler::flip_edge(h, m);
+    put(deg, p, get(deg, p) - 1);
+    put(deg, q, get(deg, q) - 1);
+    put(deg, r, get(deg, r) + 1);
+    put(deg, t, get(deg, t) + 1);
+  };
+  // (the change in the number of irregular vertices when v's degree changes by `change`)
+  auto shift = [&](auto v, int change) {
+    const int d = get(deg, v), reg = get(regular, v);
+    return int(d + change != reg) - int(d != reg);
+  };
   // the change of the number of irregular vertices a flip of h makes, or `no` when it may not be made
   auto gain = [&](halfedge_descriptor h) {
     if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) return no;
     const auto p = source(h, m), q = target(h, m), r = target(next(h, m), m), t = target(next(opposite(h, m), m), m);
-    if(degree(p, m) <= 3 || degree(q, m) <= 3 || halfedge(r, t, m).second) return no;
-    const int change = ctx.irregular_change(h, m);
+    if(get(deg, p) <= 3 || get(deg, q) <= 3 || halfedge(r, t, m).second) return no;
+    const int change = shift(p, -1) + shift(q, -1) + shift(r, 1) + shift(t, 1);
     if(change > 0) return no;
     if(ctx.min_angle_after_flip(h, m) < floor) return no;
     if(!ctx.flip_is_safe(h, m, cos_max)) return no;
@@ -76,19 +98,19 @@ std::size_t regularity_flips(const Context& ctx, Mesh& m, IsFeatureEdge is_featu
     auto h = halfedge(e, m);
     const int g = gain(h);
     if(g == no || g > 0) continue;
-    if(g < 0) { CGAL::Euler::flip_edge(h, m); ++flips; if(flipped) flipped->push_back(h); continue; }
+    if(g < 0) { flip(h); ++flips; if(flipped) flipped->push_back(h); continue; }
     if(!lookahead || flipped) continue;
     // a flip that only moves an irregular vertex, when a second flip next to it then removes one
     const auto p = source(h, m), q = target(h, m);
-    CGAL::Euler::flip_edge(h, m);
+    flip(h);
     around.clear();
     for(auto x : {p, q, source(h, m), target(h, m)})
       for(auto k : CGAL::halfedges_around_target(x, m))
         if(edge(k, m) != edge(h, m)) around.push_back(k);
     bool done = false;
     for(auto k : around)
-      if(gain(k) < 0) { CGAL::Euler::flip_edge(k, m); flips += 2; done = true; break; }
-    if(!done) CGAL::Euler::flip_edge(h, m);
+      if(gain(k) < 0) { flip(k); flips += 2; done = true; break; }
+    if(!done) flip(h);
   }
   stats.valence_flips += flips;
   return flips;

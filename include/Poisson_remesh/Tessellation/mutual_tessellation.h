@@ -312,7 +312,7 @@ insert_samples(const TriangleMesh& input, InputVPM in_vpm, const SampleRange& sa
 // Steps 2 and 3 of §6.1: flips, then passes of removal of the original vertices with flips in
 // between, until a pass removes nothing (the fold-over guard is raised once before giving up);
 // then the repair flips. Fills the counters of `result`.
-template <class Tess, class Settings, class Result>
+template <class ConcurrencyTag, class Tess, class Settings, class Result>
 void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
 {
   typedef typename Tess::vertex_descriptor vertex_descriptor;
@@ -340,7 +340,7 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
   T.flip_edges();
   result.number_of_flips = T.flips;
   if(settings.repair_self_intersections) {
-    result.number_of_repair_flips = T.repair_self_intersections();
+    result.number_of_repair_flips = T.template repair_self_intersections<ConcurrencyTag>();
     // the repair changed some rings: one more chance for the vertices left, then repair again
     if(result.number_of_repair_flips > 0 && !originals.empty()) {
       std::vector<vertex_descriptor> left;
@@ -348,7 +348,7 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
         if(T.try_remove(v)) ++result.number_of_removed_vertices;
         else left.push_back(v);
       }
-      if(left.size() < originals.size()) result.number_of_repair_flips += T.repair_self_intersections();
+      if(left.size() < originals.size()) result.number_of_repair_flips += T.template repair_self_intersections<ConcurrencyTag>();
       originals.swap(left);
     }
   }
@@ -362,7 +362,7 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
     if(result.number_of_collapsed_vertices > 0) {
       T.flip_edges();
       result.number_of_flips = T.flips;
-      if(settings.repair_self_intersections) result.number_of_repair_flips += T.repair_self_intersections();
+      if(settings.repair_self_intersections) result.number_of_repair_flips += T.template repair_self_intersections<ConcurrencyTag>();
     }
   }
   result.refused_star = T.refusals[0];
@@ -383,8 +383,10 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
 
   Named parameters: `vertex_point_map` of `input` (CGAL; default the internal one). The output
   uses its internal point map. The guards are in `settings` (see Mutual_tessellation_settings).
+  `ConcurrencyTag`: CGAL::Sequential_tag (the default) or CGAL::Parallel_tag, which runs the
+  whole-mesh crossing searches of the repair flips on TBB's threads (the same result).
 */
-template <class TriangleMesh, class SampleRange, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class SampleRange, class NamedParameters = parameters::Default_named_parameters>
 Mutual_tessellation_result<TriangleMesh>
 mutual_tessellation(const TriangleMesh& input, const SampleRange& samples, const Feature_set<TriangleMesh>& features,
                     TriangleMesh& output, const NamedParameters& np = parameters::default_values(),
@@ -403,7 +405,7 @@ mutual_tessellation(const TriangleMesh& input, const SampleRange& samples, const
 
   // §6.1, step by step
   const std::vector<vertex_descriptor> input_vertex = internal::insert_samples(input, in_vpm, samples, features, T, result);
-  internal::remove_original_vertices(T, settings, result);
+  internal::remove_original_vertices<ConcurrencyTag>(T, settings, result);
 
   // ---- the output: a compact copy, and what each vertex is ------------------------------------------
   clear(output);

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstddef>
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -54,6 +55,22 @@ inline double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c)
   if(bc <= ab && bc <= ca) return angle3(sub3(b, a), sub3(c, a));   // at a
   if(ca <= ab) return angle3(sub3(a, b), sub3(c, b));                // at b
   return angle3(sub3(a, c), sub3(b, c));                             // at c
+}
+// the tangent of that smallest angle (at the same corner), without atan2: the smallest angle is at
+// most 60 degrees, where the tangent grows with the angle, so that the flips below compare tangents
+// first and only take the angles of the few edges the tangents do not turn down; NaN when the
+// cosine term is not positive (a degenerate triangle: the angles decide)
+inline double smallest_angle_tangent(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  auto squared_length = [](const Vec3& v) { return dot3(v, v); };
+  auto tangent = [](const Vec3& u, const Vec3& v) {
+    const double d = dot3(u, v);
+    return d > 0 ? norm3(cross3(u, v)) / d : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double ab = squared_length(sub3(b, a)), bc = squared_length(sub3(c, b)), ca = squared_length(sub3(a, c));
+  if(bc <= ab && bc <= ca) return tangent(sub3(b, a), sub3(c, a));
+  if(ca <= ab) return tangent(sub3(a, b), sub3(c, b));
+  return tangent(sub3(a, c), sub3(b, c));
 }
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross3(sub3(b, a), sub3(c, a)); }
 
@@ -111,7 +128,14 @@ public:
     if(c == d) return false;
     const Vec3 pa = xyz(a), pb = xyz(b), pc = xyz(c), pd = xyz(d);
     // old triangles (a, b, c), (b, a, d); new ones (c, a, d), (d, b, c); the angle test first:
-    // most edges fail it, and it is cheaper than walking the rings below
+    // most edges fail it, and it is cheaper than walking the rings below (and most fail it by the
+    // tangents already: a new smallest angle no larger than the old one is turned down, as the
+    // angles would; a NaN tangent leaves it to the angles)
+    {
+      const double t[4] = {smallest_angle_tangent(pa, pb, pc), smallest_angle_tangent(pb, pa, pd),
+                           smallest_angle_tangent(pc, pa, pd), smallest_angle_tangent(pd, pb, pc)};
+      if(!std::isnan(t[0] + t[1] + t[2] + t[3]) && std::min(t[2], t[3]) <= std::min(t[0], t[1])) return false;
+    }
     const double old_min = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
     const double new_min = std::min(smallest_angle(pc, pa, pd), smallest_angle(pd, pb, pc));
     if(!(new_min > old_min + 1e-9)) return false;
@@ -672,11 +696,13 @@ public:
   /// flips non-feature edges of self-intersecting faces when the flip lowers the number of
   /// crossings with the faces involved and the stars around (a fold needs a flip that changes
   /// normals a lot, so beta and gamma do not apply; the crossing count is the guard).
+  /// (`ConcurrencyTag`: the mode of the whole-mesh crossing search, which finds the same pairs in both)
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   std::size_t repair_self_intersections(std::size_t rounds = 4)
   {
     std::size_t repaired = 0;
     for(std::size_t round = 0; round < rounds; ++round) {
-      const auto pairs = Poisson_remesh::internal::intersecting_face_pairs(tm, faces(tm), vpm, 2 * num_faces(tm) + 1);
+      const auto pairs = Poisson_remesh::internal::intersecting_face_pairs<ConcurrencyTag>(tm, faces(tm), vpm, 2 * num_faces(tm) + 1);
       if(pairs.empty()) break;
       // a surface that cuts itself everywhere (input faces folded onto each other) has more
       // crossings than flips can mend, at a cost quadratic in them: left alone
