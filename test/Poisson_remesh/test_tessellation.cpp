@@ -245,20 +245,26 @@ TEST_CASE("mutual tessellation runs on Polyhedron_3", "[tessellation]")
   CHECK(f.unjoined_feature_pairs == 0);
 }
 
+namespace {
+// the angle at corner o of triangle (o, a, b) by the law of cosines (the judge of the tessellator's
+// angles below)
+double law_of_cosines_angle(const std::array<double, 3>& o, const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  double ab = 0, oa = 0, ob = 0;
+  for(int i = 0; i < 3; ++i) {
+    ab += (a[i] - b[i]) * (a[i] - b[i]);
+    oa += (a[i] - o[i]) * (a[i] - o[i]);
+    ob += (b[i] - o[i]) * (b[i] - o[i]);
+  }
+  return std::acos(std::max(-1.0, std::min(1.0, (oa + ob - ab) / (2 * std::sqrt(oa * ob)))));
+}
+} // namespace
+
 TEST_CASE("the tessellation's smallest angle of a triangle is the least of its three angles", "[tessellation]")
 {
   // the tessellator takes the angle opposite the shortest side; judged here by the law of
   // cosines at all three corners
   typedef std::array<double, 3> V;
-  auto corner = [](const V& o, const V& a, const V& b) {
-    double ab = 0, oa = 0, ob = 0;
-    for(int i = 0; i < 3; ++i) {
-      ab += (a[i] - b[i]) * (a[i] - b[i]);
-      oa += (a[i] - o[i]) * (a[i] - o[i]);
-      ob += (b[i] - o[i]) * (b[i] - o[i]);
-    }
-    return std::acos(std::max(-1.0, std::min(1.0, (oa + ob - ab) / (2 * std::sqrt(oa * ob)))));
-  };
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
   std::size_t checked = 0;
@@ -267,7 +273,7 @@ TEST_CASE("the tessellation's smallest angle of a triangle is the least of its t
     for(auto& x : p) x = {u(rng), u(rng), u(rng)};
     if(k % 4 == 1) p[2] = {0.5 * (p[0][0] + p[1][0]) + 1e-3 * u(rng), 0.5 * (p[0][1] + p[1][1]), 0.5 * (p[0][2] + p[1][2])};   // flat
     if(k % 4 == 2) p[2] = {p[0][0] + 1e-3 * u(rng), p[0][1] + 1e-3 * u(rng), p[0][2]};                                          // needle
-    const double want = std::min({corner(p[0], p[1], p[2]), corner(p[1], p[2], p[0]), corner(p[2], p[0], p[1])});
+    const double want = std::min({law_of_cosines_angle(p[0], p[1], p[2]), law_of_cosines_angle(p[1], p[2], p[0]), law_of_cosines_angle(p[2], p[0], p[1])});
     for(int r = 0; r < 3; ++r) {   // every order of the corners
       const double got = PR::internal::smallest_angle(p[r], p[(r + 1) % 3], p[(r + 2) % 3]);
       REQUIRE(got == Approx(want).margin(1e-6));
@@ -284,15 +290,6 @@ TEST_CASE("the flips' tangent of the smallest angle turns down only what the ang
   // whose angles differ by more than the flips' 1e-9; a triangle without a positive cosine at
   // that corner (here: three equal points) has a NaN tangent, and its angle is left to atan2
   typedef std::array<double, 3> V;
-  auto corner = [](const V& o, const V& a, const V& b) {
-    double ab = 0, oa = 0, ob = 0;
-    for(int i = 0; i < 3; ++i) {
-      ab += (a[i] - b[i]) * (a[i] - b[i]);
-      oa += (a[i] - o[i]) * (a[i] - o[i]);
-      ob += (b[i] - o[i]) * (b[i] - o[i]);
-    }
-    return std::acos(std::max(-1.0, std::min(1.0, (oa + ob - ab) / (2 * std::sqrt(oa * ob)))));
-  };
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   auto triangle = [&](int k, V* p) {
@@ -307,7 +304,7 @@ TEST_CASE("the flips' tangent of the smallest angle turns down only what the ang
     triangle(k, p);
     triangle(k / 5, q);
     const double tp = PR::internal::smallest_angle_tangent(p[0], p[1], p[2]), tq = PR::internal::smallest_angle_tangent(q[0], q[1], q[2]);
-    auto least = [&](const V* x) { return std::min({corner(x[0], x[1], x[2]), corner(x[1], x[2], x[0]), corner(x[2], x[0], x[1])}); };
+    auto least = [&](const V* x) { return std::min({law_of_cosines_angle(x[0], x[1], x[2]), law_of_cosines_angle(x[1], x[2], x[0]), law_of_cosines_angle(x[2], x[0], x[1])}); };
     if(std::isnan(tp)) { ++nan; REQUIRE(k % 5 == 3); continue; }
     REQUIRE(tp >= 0);
     REQUIRE(std::atan(tp) == Approx(least(p)).margin(1e-6));
