@@ -46,32 +46,30 @@ inline double angle3(const Vec3& a, const Vec3& b) // radians, in [0, pi]
 {
   return vector_angle(norm3(cross3(a, b)), dot3(a, b));
 }
-// the smallest angle of triangle abc lies opposite its shortest side: one atan2 instead of three
-// (the flips of the tessellation ask for it four times per edge they look at)
-inline double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c)
+// the smallest angle of triangle abc lies opposite its shortest side: its two sides at that
+// corner, so that one angle is measured instead of three (the flips of the tessellation ask for
+// it four times per edge they look at)
+typedef std::pair<Vec3, Vec3> Corner_sides;
+inline Corner_sides smallest_angle_sides(const Vec3& a, const Vec3& b, const Vec3& c)
 {
   auto squared_length = [](const Vec3& v) { return dot3(v, v); };
   const double ab = squared_length(sub3(b, a)), bc = squared_length(sub3(c, b)), ca = squared_length(sub3(a, c));
-  if(bc <= ab && bc <= ca) return angle3(sub3(b, a), sub3(c, a));   // at a
-  if(ca <= ab) return angle3(sub3(a, b), sub3(c, b));                // at b
-  return angle3(sub3(a, c), sub3(b, c));                             // at c
+  if(bc <= ab && bc <= ca) return {sub3(b, a), sub3(c, a)};   // at a
+  if(ca <= ab) return {sub3(a, b), sub3(c, b)};                // at b
+  return {sub3(a, c), sub3(b, c)};                             // at c
 }
-// the tangent of that smallest angle (at the same corner), without atan2: the smallest angle is at
-// most 60 degrees, where the tangent grows with the angle, so that the flips below compare tangents
-// first and only take the angles of the few edges the tangents do not turn down; NaN when the
-// cosine term is not positive (a degenerate triangle: the angles decide)
-inline double smallest_angle_tangent(const Vec3& a, const Vec3& b, const Vec3& c)
+inline double corner_angle(const Corner_sides& s) { return angle3(s.first, s.second); }
+inline double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) { return corner_angle(smallest_angle_sides(a, b, c)); }
+// the tangent of that angle, without atan2: the smallest angle is at most 60 degrees, where the
+// tangent grows with the angle, so that the flips below compare tangents first and only take the
+// angles of the few edges the tangents do not turn down; NaN when the cosine term is not
+// positive (a degenerate triangle: the angles decide)
+inline double corner_tangent(const Corner_sides& s)
 {
-  auto squared_length = [](const Vec3& v) { return dot3(v, v); };
-  auto tangent = [](const Vec3& u, const Vec3& v) {
-    const double d = dot3(u, v);
-    return d > 0 ? norm3(cross3(u, v)) / d : std::numeric_limits<double>::quiet_NaN();
-  };
-  const double ab = squared_length(sub3(b, a)), bc = squared_length(sub3(c, b)), ca = squared_length(sub3(a, c));
-  if(bc <= ab && bc <= ca) return tangent(sub3(b, a), sub3(c, a));
-  if(ca <= ab) return tangent(sub3(a, b), sub3(c, b));
-  return tangent(sub3(a, c), sub3(b, c));
+  const double d = dot3(s.first, s.second);
+  return d > 0 ? norm3(cross3(s.first, s.second)) / d : std::numeric_limits<double>::quiet_NaN();
 }
+inline double smallest_angle_tangent(const Vec3& a, const Vec3& b, const Vec3& c) { return corner_tangent(smallest_angle_sides(a, b, c)); }
 inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return cross3(sub3(b, a), sub3(c, a)); }
 
 /// The working state: the mesh being tessellated and what each of its elements is.
@@ -131,13 +129,12 @@ public:
     // most edges fail it, and it is cheaper than walking the rings below (and most fail it by the
     // tangents already: a new smallest angle no larger than the old one is turned down, as the
     // angles would; a NaN tangent leaves it to the angles)
-    {
-      const double t[4] = {smallest_angle_tangent(pa, pb, pc), smallest_angle_tangent(pb, pa, pd),
-                           smallest_angle_tangent(pc, pa, pd), smallest_angle_tangent(pd, pb, pc)};
-      if(!std::isnan(t[0] + t[1] + t[2] + t[3]) && std::min(t[2], t[3]) <= std::min(t[0], t[1])) return false;
-    }
-    const double old_min = std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd));
-    const double new_min = std::min(smallest_angle(pc, pa, pd), smallest_angle(pd, pb, pc));
+    const Corner_sides s[4] = {smallest_angle_sides(pa, pb, pc), smallest_angle_sides(pb, pa, pd),
+                               smallest_angle_sides(pc, pa, pd), smallest_angle_sides(pd, pb, pc)};
+    const double t[4] = {corner_tangent(s[0]), corner_tangent(s[1]), corner_tangent(s[2]), corner_tangent(s[3])};
+    if(!std::isnan(t[0] + t[1] + t[2] + t[3]) && std::min(t[2], t[3]) <= std::min(t[0], t[1])) return false;
+    const double old_min = std::min(corner_angle(s[0]), corner_angle(s[1]));
+    const double new_min = std::min(corner_angle(s[2]), corner_angle(s[3]));
     if(!(new_min > old_min + 1e-9)) return false;
     if(edge_exists(c, d)) return false;   // the new edge must not exist already
     if(degree(a, tm) <= 3 || degree(b, tm) <= 3) return false;
