@@ -441,6 +441,90 @@ TEST_CASE("angle optimization and smoothing: a free vertex pushed off its place 
   }
 }
 
+TEST_CASE("angle smoothing: a free vertex climbs the gradient of its ring's smallest angles", "[operators][angles]")
+{
+  // the directions of the smoothing's gradient steps against central differences of the
+  // law-of-cosines angles (the judge's angle_deg), on random stars in the plane z = 0, some
+  // corners with a tip scale; only stars whose smallest corners are not nearly tied (where the
+  // sum is smooth). A step along either direction raises what it climbs.
+  typedef K::Vector_3 Vector;
+  typedef P::internal::vertex_angle_search_detail::Ring_triangle<Point, Vector> Ring_triangle;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const Vector nn(0, 0, 1);
+  auto unit_vector = [](const Vector& v) { return v / std::sqrt(v.squared_length()); };
+  // each triangle's smallest scaled angle (radians), and the gap to its second smallest
+  auto smallest = [](const Ring_triangle& t, const Point& q, double* gap = nullptr) {
+    std::array<double, 3> x = {t.sa * angle_deg(t.a, q, t.b), angle_deg(q, t.a, t.b), t.sb * angle_deg(t.b, q, t.a)};
+    std::sort(x.begin(), x.end());
+    if(gap != nullptr) *gap = x[1] - x[0];
+    return x[0] * CGAL_PI / 180;
+  };
+  int judged = 0, cancelled = 0, opposite = 0;
+  for(int trial = 0; trial < 400; ++trial) {
+    const int k = 4 + int(unit(rng) * 5);
+    std::vector<Point> ring_points;
+    for(int i = 0; i < k; ++i) {
+      const double phi = (i + 0.8 * (unit(rng) - 0.5)) * 2 * CGAL_PI / k, r = 0.5 + unit(rng);
+      ring_points.push_back(Point(r * std::cos(phi), r * std::sin(phi), 0));
+    }
+    std::vector<Ring_triangle> ring;
+    for(int i = 0; i < k; ++i)
+      ring.push_back(Ring_triangle{ring_points[std::size_t(i)], ring_points[std::size_t((i + 1) % k)], nn, 1,
+                                   unit(rng) < 0.2 ? 2.0 : 1.0, unit(rng) < 0.2 ? 1.5 : 1.0});
+    const Point q(0.3 * (unit(rng) - 0.5), 0.3 * (unit(rng) - 0.5), 0);
+    bool smooth = true;
+    double least = 10;
+    std::size_t least_at = 0;
+    for(std::size_t i = 0; i < ring.size(); ++i) {
+      double gap;
+      const double x = smallest(ring[i], q, &gap);
+      if(gap < 0.5) smooth = false;
+      if(x < least - 1e-3) { least = x; least_at = i; }
+      else if(x < least + 1e-3) smooth = false;   // (two least triangles: no single gradient)
+    }
+    if(!smooth) continue;
+    const double h = 1e-6;
+    auto sum_at = [&](const Point& x) {
+      double s = 0;
+      for(const Ring_triangle& t : ring) s += smallest(t, x);
+      return s;
+    };
+    auto gradient = [&](auto f) {
+      return Vector((f(q + Vector(h, 0, 0)) - f(q - Vector(h, 0, 0))) / (2 * h), (f(q + Vector(0, h, 0)) - f(q - Vector(0, h, 0))) / (2 * h), 0);
+    };
+    const Vector g_sum = gradient(sum_at), g_least = gradient([&](const Point& x) { return smallest(ring[least_at], x); });
+    double terms = 0;   // (the lengths of the sum's terms' gradients)
+    for(const Ring_triangle& t : ring) terms += std::sqrt(gradient([&](const Point& x) { return smallest(t, x); }).squared_length());
+    Vector d_sum, d_both;
+    P::internal::vertex_angle_search_detail::ascent_directions(ring, q, nn, d_sum, d_both);
+    INFO("trial " << trial);
+    if(std::sqrt(g_sum.squared_length()) < 1e-6 * terms) {
+      // the terms cancel (the smallest angles beside an edge from q at its other end): no
+      // direction for the sum, the least angle's alone
+      ++cancelled;
+      CHECK(d_sum == CGAL::NULL_VECTOR);
+      CHECK(d_both * unit_vector(g_least) > 0.9999);
+    } else {
+      ++judged;
+      CHECK(d_sum * unit_vector(g_sum) > 0.9999);
+      CHECK(std::abs(d_sum.squared_length() - 1) < 1e-12);
+      CHECK(sum_at(q + 1e-4 * d_sum) > sum_at(q));   // (a short step along it raises the sum)
+      const Vector both = unit_vector(g_sum) + unit_vector(g_least);
+      if(both.squared_length() < 1e-12) {   // (opposite: no direction raises both)
+        ++opposite;
+        CHECK(d_both == CGAL::NULL_VECTOR);
+        continue;
+      }
+      CHECK(d_both * unit_vector(both) > 0.9999);
+    }
+    CHECK(smallest(ring[least_at], q + 1e-4 * d_both) > least);
+  }
+  INFO(judged << " stars with a gradient of the sum (" << opposite << " opposite to the least angle's), " << cancelled << " without");
+  CHECK(judged > 50);
+  CHECK(cancelled > 5);
+}
+
 TEST_CASE("regularity flips: a grid with one diagonal turned gets its valence-6 vertices back", "[operators][regularity]")
 {
   const Mesh in = square(24);

@@ -4,9 +4,10 @@
 // centroids are the best positions for the energy of §6.2, not for the angles of a given
 // connectivity: every movable vertex moves (a free one in its tangent plane, then onto the input;
 // a feature vertex along its curve) to raise the sum of its triangles' smallest angles without
-// lowering the smallest of them, by a short compass search (the first direction that gains is
-// taken). Constraints: vertices on the input;
-// moves only; a move that makes the mesh cut itself anew is taken back.
+// lowering the smallest of them: a free vertex by steps up the gradient of that sum (halved
+// while they do not gain), a feature vertex by a short compass search along its curve.
+// Constraints: vertices on the input; moves only; a move that makes the mesh cut itself anew is
+// taken back.
 
 #ifndef POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H
 #define POISSON_REMESH_POSTPROCESSING_ANGLE_SMOOTHING_H

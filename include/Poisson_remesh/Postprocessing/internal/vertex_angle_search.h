@@ -9,11 +9,13 @@
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/internal/parallel.h>
+#include <Poisson_remesh/internal/vector_angle.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 #include <vector>
@@ -26,6 +28,66 @@ namespace Postprocessing {
 enum class Angle_goal { smallest, sum_of_smallest };
 
 namespace internal {
+
+namespace vertex_angle_search_detail {
+
+// a triangle (a, v, b) of the star of the vertex v that searches: its other corners, its normal
+// n (length ln) at the search's start, and the scales of its angles at a and b (tips)
+template <class Point_3, class Vector_3>
+struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
+
+// the gradient steps of a free vertex's smoothing search, at most (each step moves the vertex or
+// halves the step size, which starts at a tenth of its mean edge length and ends under a hundredth)
+constexpr int gradient_steps = 16;
+
+// At q (the searching vertex's trial point), the directions in the tangent plane (unit normal nn)
+// in which the sum of the ring triangles' smallest angles rises fastest (d_sum), and the bisector
+// of it and the direction in which the least of those angles rises fastest (d_both): the unit
+// projections of their gradients. With e = q - a and f = b - a, the angle at a changes as q moves
+// across e, by the move over |e|: its gradient is minus the part of f across e over |e x f|,
+// twice the area; at b alike; the angle at q is pi minus the two. A corner's tip scale scales its
+// gradient. Where the sum has no gradient -- its terms cancel to rounding, as when the smallest
+// angles of the two triangles beside an edge qa are both at a, whose sum stays the angle between
+// a's other two neighbours -- d_sum is the null vector and d_both the least angle's direction;
+// where the two directions are opposite, d_both is the null vector.
+template <class Ring, class Point_3, class Vector_3>
+void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, Vector_3& d_sum, Vector_3& d_both)
+{
+  Vector_3 g_sum = CGAL::NULL_VECTOR, g_least = CGAL::NULL_VECTOR;
+  double least = std::numeric_limits<double>::infinity(), terms = 0;   // (terms: the sum of the gradients' lengths)
+  for(const auto& t : ring) {
+    const Vector_3 ea = q - t.a, eb = q - t.b, ab = t.b - t.a;
+    const double area2 = std::sqrt(CGAL::to_double(CGAL::cross_product(ea, ab).squared_length()));
+    const double la = CGAL::to_double(ea.squared_length()), lb = CGAL::to_double(eb.squared_length());
+    if(!(area2 > 0 && la > 0 && lb > 0)) continue;
+    const double xa = t.sa * Poisson_remesh::internal::vector_angle(area2, CGAL::to_double(ea * ab));
+    const double xb = t.sb * Poisson_remesh::internal::vector_angle(area2, -CGAL::to_double(eb * ab));
+    const double xq = Poisson_remesh::internal::vector_angle(area2, CGAL::to_double((t.a - q) * (t.b - q)));
+    const Vector_3 ga = (CGAL::to_double(ab * ea) / la * ea - ab) / area2;
+    const Vector_3 gb = (ab - CGAL::to_double(ab * eb) / lb * eb) / area2;
+    Vector_3 g;
+    double x;
+    if(xa <= xb && xa <= xq) { g = t.sa * ga; x = xa; }
+    else if(xb <= xq) { g = t.sb * gb; x = xb; }
+    else { g = -(ga + gb); x = xq; }
+    g_sum = g_sum + g;
+    terms += std::sqrt(CGAL::to_double(g.squared_length()));
+    if(x < least) { least = x; g_least = g; }
+  }
+  // (the null vector when the part in the plane is no longer than `cancelled`)
+  auto unit_in_plane = [&](Vector_3 g, double cancelled) {
+    g = g - CGAL::to_double(g * nn) * nn;
+    const double l = std::sqrt(CGAL::to_double(g.squared_length()));
+    return l > cancelled ? g / l : CGAL::NULL_VECTOR;
+  };
+  const double rounding = 1e-9;   // (relative to the terms: far above the rounding of their sum)
+  d_sum = unit_in_plane(g_sum, rounding * terms);
+  const Vector_3 u_least = unit_in_plane(g_least, 0);
+  // (none either when the two are opposite: no direction raises both)
+  d_both = d_sum == CGAL::NULL_VECTOR ? u_least : u_least == CGAL::NULL_VECTOR ? CGAL::NULL_VECTOR : unit_in_plane(d_sum + u_least, 2 * rounding);
+}
+
+} // namespace vertex_angle_search_detail
 
 /// Moves vertices by a pattern search on the input (feature vertices along their curves): with
 /// Angle_goal::smallest, the movable vertices of the triangles sharper than `optimized_angle`
@@ -142,7 +204,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // the triangles around the vertex being moved, read once for its whole search (its
     // neighbours stay where they are meanwhile): Context::smallest_angles_around() without
     // walking the mesh for each trial point, the same figures
-    struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
+    typedef vertex_angle_search_detail::Ring_triangle<Point_3, Vector_3> Ring_triangle;
     thread_local std::vector<Ring_triangle> ring;
     ring.clear();
     for(auto h : CGAL::halfedges_around_target(v, m)) {
@@ -193,10 +255,11 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // (one feature edge: the vertex may be the loose end of a curve at a tip, it moves little)
     const bool loose_end = c == 1 && dirs.size() == 1;
     if(loose_end) dirs.push_back(-dirs[0]);
+    Vector_3 nn(0, 0, 0);   // (c == 0: the unit normal of the tangent plane)
     if(c == 0) {
       const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
       if(!(ln > 0)) return start;
-      const Vector_3 nn = nv / ln;
+      nn = nv / ln;
       Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
       if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
       u = u / std::sqrt(CGAL::to_double(u.squared_length()));
@@ -207,21 +270,46 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         for(int k = 0; k < 8; ++k) cs[std::size_t(k)] = {std::cos(k * CGAL_PI / 4), std::sin(k * CGAL_PI / 4)};
         return cs;
       }();
-      for(const auto& cs : compass) dirs.push_back(cs[0] * u + cs[1] * w);
+      if(!smoothing) for(const auto& cs : compass) dirs.push_back(cs[0] * u + cs[1] * w);
     }
-    if(dirs.empty()) return start;
+    if(dirs.empty() && !(smoothing && c == 0)) return start;
     // (a bounded number of steps: where gains never stop, however small -- a flat sheet folded
     // onto itself -- the step would never shrink)
     // (the local repair's searches, `only`, too: each of its candidates searches its region again,
     // and a projection per trial point costs most where the input's triangles are long and thin)
     const bool in_plane = (smoothing || only != nullptr) && c == 0;
     double step = (smoothing ? 0.1 : 0.2) * mean;
-    // the smoothing polls opportunistically (a compass search): it takes the first direction that
-    // gains, starting with the last one that did, within the trials that polling every direction
-    // at each of its 10 steps would make; the angle optimization, whose smallest angle is not
-    // smooth, takes the best of all directions at each step
     const std::size_t nd = dirs.size();
     std::size_t trials = smoothing ? 10 * nd : 0, first = 0;
+    if(smoothing && c == 0) {
+      // a free vertex's smoothing climbs the gradient of the sum (smooth between the changes of
+      // which corner is a triangle's smallest): a step along the gradient, or, when that lowers
+      // the least angle under the floor, along the bisector of it and the least triangle's
+      // gradient (an ascent direction of both), the step size halved while neither gains. A
+      // compass poll of the tangent plane pays eight trials for each halving, most of them in
+      // directions that lose; this pays one or two, and a gradient where the vertex moved.
+      Vector_3 d[2];
+      bool current = false;   // (d holds the directions at p)
+      for(int iteration = 0; iteration < vertex_angle_search_detail::gradient_steps && step > 0.01 * mean; ++iteration) {
+        if(!current) {
+          vertex_angle_search_detail::ascent_directions(ring, p, nn, d[0], d[1]);
+          current = true;
+        }
+        bool gained = false;
+        for(const Vector_3& dk : d) {
+          if(dk == CGAL::NULL_VECTOR) continue;
+          const Point_3 q = p + step * dk;
+          const double a = objective(q);
+          if(a > best + 1e-6) { best = a; p = q; gained = true; current = false; break; }
+        }
+        if(!gained) step *= 0.5;
+      }
+    } else
+    // the smoothing of a feature vertex polls opportunistically along its curve (a compass
+    // search): it takes the first direction that gains, starting with the last one that did,
+    // within the trials that polling every direction at each of its 10 steps would make; the
+    // angle optimization, whose smallest angle is not smooth, takes the best of all directions
+    // at each step
     for(int iteration = 0; iteration < (smoothing ? int(10 * nd) : 40) && step > 0.01 * mean; ++iteration) {
       Point_3 best_q = p;
       double best_here = best;
