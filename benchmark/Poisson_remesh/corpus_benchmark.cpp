@@ -130,7 +130,7 @@ static std::vector<Operator> operators()
     {"lloyd_guard", "Lloyd moves that would make a sharp triangle go half way or not", [](S& s, bool&, unsigned&) { s.lloyd_guard.min_angle = 0; }},
     {"sliver_collapse", "short edges of slivers collapsed", [](S& s, bool&, unsigned&) { s.sliver_collapse.enabled = false; }},
     {"fidelity", "input points far from the mesh inserted", [](S& s, bool&, unsigned&) { s.fidelity.max_deviation = 0; }},
-    {"angle_smoothing", "pattern search for the sum of smallest angles", [](S& s, bool&, unsigned&) { s.angle_smoothing.rounds = 0; }},
+    {"angle_smoothing", "gradient steps (compass search on curves) for the sum of smallest angles", [](S& s, bool&, unsigned&) { s.angle_smoothing.rounds = 0; }},
     {"regularity_flips", "flips that lower the irregular count", [](S& s, bool&, unsigned&) { s.regularity.rounds = 0; }},
     {"angle_optimization", "pattern search for the smallest angle", [](S& s, bool&, unsigned&) { s.angle_optimization.rounds = 0; }},
     {"refinement", "flip, removal or insertion at triangles under 30°", [](S& s, bool&, unsigned&) { s.refinement.rounds = 0; }},

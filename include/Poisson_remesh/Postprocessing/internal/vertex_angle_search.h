@@ -1,7 +1,7 @@
 // Poisson_remesh/Postprocessing/internal/vertex_angle_search.h
 //
-// The pattern search of the angle smoothing and the angle optimization (internal): vertices move
-// on the input (feature vertices along their curves) to raise the angles of their triangles.
+// The searches of the angle smoothing and the angle optimization (internal): vertices move on the
+// input (feature vertices along their curves) to raise the angles of their triangles.
 
 #ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_VERTEX_ANGLE_SEARCH_H
 #define POISSON_REMESH_POSTPROCESSING_INTERNAL_VERTEX_ANGLE_SEARCH_H
@@ -46,10 +46,12 @@ constexpr int gradient_steps = 16;
 // projections of their gradients. With e = q - a and f = b - a, the angle at a changes as q moves
 // across e, by the move over |e|: its gradient is minus the part of f across e over |e x f|,
 // twice the area; at b alike; the angle at q is pi minus the two. A corner's tip scale scales its
-// gradient. Where the sum has no gradient -- its terms cancel to rounding, as when the smallest
-// angles of the two triangles beside an edge qa are both at a, whose sum stays the angle between
-// a's other two neighbours -- d_sum is the null vector and d_both the least angle's direction;
-// where the two directions are opposite, d_both is the null vector.
+// gradient. Where the sum has no gradient -- its terms cancel to rounding, as on a flat star whose
+// triangles all have their smallest angle at q (they sum to 2 pi), or where the smallest angles of
+// the two triangles beside an edge qa are both at a (they sum to the angle between a's other two
+// neighbours) -- no move in the plane raises it (a triangle's smallest angle can only fall below
+// the corner that was its smallest): both directions are the null vector. Where the two directions
+// are opposite, no direction raises both: d_both is the null vector.
 template <class Ring, class Point_3, class Vector_3>
 void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, Vector_3& d_sum, Vector_3& d_both)
 {
@@ -83,13 +85,13 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
   const double rounding = 1e-9;   // (relative to the terms: far above the rounding of their sum)
   d_sum = unit_in_plane(g_sum, rounding * terms);
   const Vector_3 u_least = unit_in_plane(g_least, 0);
-  // (none either when the two are opposite: no direction raises both)
-  d_both = d_sum == CGAL::NULL_VECTOR ? u_least : u_least == CGAL::NULL_VECTOR ? CGAL::NULL_VECTOR : unit_in_plane(d_sum + u_least, 2 * rounding);
+  d_both = d_sum == CGAL::NULL_VECTOR || u_least == CGAL::NULL_VECTOR ? CGAL::NULL_VECTOR : unit_in_plane(d_sum + u_least, 2 * rounding);
 }
 
 } // namespace vertex_angle_search_detail
 
-/// Moves vertices by a pattern search on the input (feature vertices along their curves): with
+/// Moves vertices by a search on the input (feature vertices along their curves; a compass search,
+/// but gradient steps for the smoothing's free vertices, vertex_angle_search_detail): with
 /// Angle_goal::smallest, the movable vertices of the triangles sharper than `optimized_angle`
 /// (degrees), to raise the smallest angle around them; with Angle_goal::sum_of_smallest, every
 /// movable vertex, to raise the sum of its triangles' smallest angles without lowering the smallest
@@ -235,7 +237,8 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     };
     double best = objective(p);
     if(best < 0) return start;
-    // directions: the tangent plane (8 of them), or along the feature curve (2)
+    // directions: the tangent plane (8 of them; the smoothing climbs the gradient there instead),
+    // or along the feature curve (2)
     std::vector<Vector_3> dirs;
     double mean = 0;
     std::size_t n = 0;
@@ -283,17 +286,19 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     std::size_t trials = smoothing ? 10 * nd : 0, first = 0;
     if(smoothing && c == 0) {
       // a free vertex's smoothing climbs the gradient of the sum (smooth between the changes of
-      // which corner is a triangle's smallest): a step along the gradient, or, when that lowers
-      // the least angle under the floor, along the bisector of it and the least triangle's
-      // gradient (an ascent direction of both), the step size halved while neither gains. A
-      // compass poll of the tangent plane pays eight trials for each halving, most of them in
-      // directions that lose; this pays one or two, and a gradient where the vertex moved.
+      // which corner is a triangle's smallest): a step along the gradient, or, when that does not
+      // gain (most often: it would lower the least angle under the floor), along the bisector of
+      // it and the least triangle's gradient (an ascent direction of both), the step size halved
+      // while neither gains; it stops where the sum has no gradient. A compass poll of the
+      // tangent plane pays eight trials for each halving, most of them in directions that lose;
+      // this pays one or two, and a gradient where the vertex moved.
       Vector_3 d[2];
       bool current = false;   // (d holds the directions at p)
       for(int iteration = 0; iteration < vertex_angle_search_detail::gradient_steps && step > 0.01 * mean; ++iteration) {
         if(!current) {
           vertex_angle_search_detail::ascent_directions(ring, p, nn, d[0], d[1]);
           current = true;
+          if(d[0] == CGAL::NULL_VECTOR) break;   // (no move in the plane raises the sum)
         }
         bool gained = false;
         for(const Vector_3& dk : d) {
@@ -304,37 +309,38 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         }
         if(!gained) step *= 0.5;
       }
-    } else
-    // the smoothing of a feature vertex polls opportunistically along its curve (a compass
-    // search): it takes the first direction that gains, starting with the last one that did,
-    // within the trials that polling every direction at each of its 10 steps would make; the
-    // angle optimization, whose smallest angle is not smooth, takes the best of all directions
-    // at each step
-    for(int iteration = 0; iteration < (smoothing ? int(10 * nd) : 40) && step > 0.01 * mean; ++iteration) {
-      Point_3 best_q = p;
-      double best_here = best;
-      for(std::size_t k = 0; k < nd; ++k) {
-        const std::size_t i = (first + k) % nd;
-        const Vector_3& d = dirs[i];
-        const Point_3 t = p + step * d;
-        const Point_3 q = in_plane ? t : c == 0 ? ctx.project_on_surface(t, p) : ctx.project_on_features(t, p);
-        if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
-        if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
-        if(pin != nullptr && CGAL::to_double(CGAL::squared_distance(q, *pin)) > pin_reach * pin_reach) continue;
-        if(smoothing) {
-          if(trials == 0) break;
-          --trials;
+    } else {
+      // the smoothing of a feature vertex polls opportunistically along its curve (a compass
+      // search): it takes the first direction that gains, starting with the last one that did,
+      // within the trials that polling every direction at each of its 10 steps would make; the
+      // angle optimization, whose smallest angle is not smooth, takes the best of all directions
+      // at each step
+      for(int iteration = 0; iteration < (smoothing ? int(10 * nd) : 40) && step > 0.01 * mean; ++iteration) {
+        Point_3 best_q = p;
+        double best_here = best;
+        for(std::size_t k = 0; k < nd; ++k) {
+          const std::size_t i = (first + k) % nd;
+          const Vector_3& d = dirs[i];
+          const Point_3 t = p + step * d;
+          const Point_3 q = in_plane ? t : c == 0 ? ctx.project_on_surface(t, p) : ctx.project_on_features(t, p);
+          if(CGAL::to_double(CGAL::squared_distance(q, t)) > CGAL::square(0.25 * mean)) continue;   // thin parts
+          if(loose_end && CGAL::to_double(CGAL::squared_distance(q, start)) > CGAL::square(0.25 * mean)) continue;
+          if(pin != nullptr && CGAL::to_double(CGAL::squared_distance(q, *pin)) > pin_reach * pin_reach) continue;
+          if(smoothing) {
+            if(trials == 0) break;
+            --trials;
+          }
+          const double a = objective(q, best_here + 1e-9);
+          if(a > best_here + 1e-9) {
+            best_here = a;
+            best_q = q;
+            if(smoothing && a > best + 1e-6) { first = i; break; }
+          }
         }
-        const double a = objective(q, best_here + 1e-9);
-        if(a > best_here + 1e-9) {
-          best_here = a;
-          best_q = q;
-          if(smoothing && a > best + 1e-6) { first = i; break; }
-        }
+        if(best_here > best + 1e-6) { best = best_here; p = best_q; }
+        else step *= 0.5;
+        if(smoothing && trials == 0) break;
       }
-      if(best_here > best + 1e-6) { best = best_here; p = best_q; }
-      else step *= 0.5;
-      if(smoothing && trials == 0) break;
     }
     if(in_plane && p != start) {   // onto the input; kept if still better there
       const Point_3 t = p;
