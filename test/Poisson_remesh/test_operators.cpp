@@ -16,6 +16,7 @@
 #include <Poisson_remesh/internal/vector_angle.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -1023,6 +1024,68 @@ TEST_CASE("the nearer-first projection finds CGAL's closest point", "[projection
       CHECK(std::find(some.begin(), some.end(), hit.second) != some.end());
     }
   }
+}
+
+// internal/closest_point.h's distance filter (a leaf's triangle or segment passed over when its
+// distance in double is surely beyond the best so far): CGAL's AABB_tree::closest_point is the
+// judge, on what makes that distance least exact -- a fan of long, thin triangles far from the
+// origin, triangles with collinear or equal corners -- and on a tree of segments (the feature
+// curves') with a segment of zero length
+TEST_CASE("the projection's distance filter keeps CGAL's closest point", "[projection]")
+{
+  const K::Vector_3 far_away(1.0e4, -3.0e3, 7.0e3);
+  Mesh m;
+  const V centre = m.add_vertex(Point(0, 0, 0) + far_away);
+  std::vector<V> rim;
+  const int n = 300;
+  for(int i = 0; i < n; ++i) {
+    const double a = 2 * CGAL_PI * i / n;
+    rim.push_back(m.add_vertex(Point(std::cos(a), std::sin(a), 0.05 * std::sin(7 * a)) + far_away));
+  }
+  for(int i = 0; i < n; ++i) m.add_face(centre, rim[std::size_t(i)], rim[std::size_t((i + 1) % n)]);
+  // beside the fan: a face with collinear corners and one with two equal corners
+  const V a = m.add_vertex(Point(2, 0, 0) + far_away), b = m.add_vertex(Point(2.5, 0.1, 0) + far_away),
+          c = m.add_vertex(Point(3, 0.2, 0) + far_away), d = m.add_vertex(Point(2, 1, 0.3) + far_away),
+          e = m.add_vertex(Point(2, 1, 0.3) + far_away), f = m.add_vertex(Point(2.4, 1.2, 0.1) + far_away);
+  m.add_face(a, b, c);
+  m.add_face(d, e, f);
+  REQUIRE(num_faces(m) == std::size_t(n + 2));
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> Tree;
+  Tree tree(faces(m).first, faces(m).second, m);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<V> vs(vertices(m).begin(), vertices(m).end());
+  double worst = 0;
+  for(int i = 0; i < 3000; ++i) {
+    const Point v = m.point(vs[std::size_t(random()) % vs.size()]);
+    const double step = i % 3 == 0 ? 1e-9 : i % 3 == 1 ? 0.01 : 0.5;
+    const Point q(v.x() + step * unit(random), v.y() + step * unit(random), v.z() + step * unit(random));
+    const double judge = std::sqrt(CGAL::to_double(tree.squared_distance(q)));
+    worst = std::max(worst, std::abs(std::sqrt(CGAL::squared_distance(q, PR::internal::closest_point(tree, q, v))) - judge));
+    worst = std::max(worst, std::abs(std::sqrt(CGAL::squared_distance(q, PR::internal::closest_point(tree, q))) - judge));
+  }
+  CHECK(worst <= 1e-9);   // (a few ulps of coordinates near 1e4)
+
+  typedef std::vector<K::Segment_3>::const_iterator Iterator;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, Iterator>>> Segment_tree;
+  std::vector<K::Segment_3> segments;
+  Point last(0.3, 0.2, 0.1);
+  for(int i = 0; i < 500; ++i) {
+    const Point next = i == 250 ? last : Point(last.x() + 0.01 * unit(random) + 0.004, last.y() + 0.01 * unit(random), last.z() + 0.002 * unit(random));
+    segments.emplace_back(last, next);
+    last = next;
+  }
+  Segment_tree curves(segments.cbegin(), segments.cend());
+  double worst_segment = 0;
+  for(int i = 0; i < 3000; ++i) {
+    const K::Segment_3& s = segments[std::size_t(random()) % segments.size()];
+    const Point v = CGAL::midpoint(s.source(), s.target());
+    const double step = i % 2 == 0 ? 0.002 : 0.05;
+    const Point q(v.x() + step * unit(random), v.y() + step * unit(random), v.z() + step * unit(random));
+    const double judge = std::sqrt(CGAL::to_double(curves.squared_distance(q)));
+    worst_segment = std::max(worst_segment, std::abs(std::sqrt(CGAL::squared_distance(q, PR::internal::closest_point(curves, q, v))) - judge));
+  }
+  CHECK(worst_segment <= 1e-14);
 }
 
 // internal/vector_angle.h, the relaxation's and the tessellation's triangle angles: std::atan2 is the judge

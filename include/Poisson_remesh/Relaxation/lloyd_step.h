@@ -16,6 +16,8 @@
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/internal/parallel.h>
+#include <boost/container/small_vector.hpp>
+#include <array>
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -40,8 +42,9 @@ bool lloyd_target(const Context& ctx, typename boost::graph_traits<Mesh>::vertex
 {
   typedef typename Context::Point_3 Point_3;
   constexpr bool uniform = std::is_same<VertexDensity, Unit_density>::value;
-  std::vector<Point_3> ring;
-  std::vector<double> ring_density;
+  // (rings rarely have more than 16 vertices: no allocation per vertex)
+  boost::container::small_vector<Point_3, 16> ring;
+  boost::container::small_vector<double, 16> ring_density;
   for(auto h : CGAL::halfedges_around_target(v, m)) {
     ring.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
     if constexpr(!uniform) ring_density.push_back(vertex_density(source(h, m)));
@@ -53,7 +56,7 @@ bool lloyd_target(const Context& ctx, typename boost::graph_traits<Mesh>::vertex
   const std::size_t n = ring.size();
   if(n < 3) return false;
   const Point_3& p = get(get(CGAL::vertex_point, m), v);
-  std::vector<double> theta(n), len(n);
+  boost::container::small_vector<double, 16> theta(n), len(n);
   double total = 0;
   for(std::size_t i = 0; i < n; ++i) {
     theta[i] = ctx.angle(ring[i], p, ring[(i + 1) % n]);
@@ -61,7 +64,7 @@ bool lloyd_target(const Context& ctx, typename boost::graph_traits<Mesh>::vertex
     total += theta[i];
   }
   if(!(total > 0)) return false;
-  std::vector<std::array<double, 2>> q(n);
+  boost::container::small_vector<std::array<double, 2>, 16> q(n);
   double phi = 0;
   for(std::size_t i = 0; i < n; ++i) {
     q[i] = {{len[i] * std::cos(phi), len[i] * std::sin(phi)}};
@@ -152,7 +155,7 @@ void lloyd_pass(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner 
       if(nr == 0 || CGAL::to_double(CGAL::squared_distance(projected, target)) > CGAL::square(max_jump)) return refused;
       target = projected;
     } else if(fd == 2) {
-      std::vector<Point_3> ends;
+      boost::container::small_vector<Point_3, 4> ends;
       for(auto h : CGAL::halfedges_around_target(v, m))
         if(is_feature(edge(h, m)) || is_border(edge(h, m), m)) ends.push_back(get(get(CGAL::vertex_point, m), source(h, m)));
       target = ctx.project_on_features(CGAL::midpoint(ends[0], ends[1]), get(get(CGAL::vertex_point, m), v));

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace Poisson_remesh {
@@ -55,6 +56,7 @@ public:
 
   void intersection(const Point& query, const Primitive& primitive)
   {
+    if(farther_than_bound(primitive)) return;
     const Point c = traits_.closest_point_object()(query, primitive, best_);
     if(!traits_.equal_3_object()(c, best_)) {
       best_ = c;
@@ -84,6 +86,87 @@ private:
   {
     const double x = CGAL::to_double(p.x()) - q_[0], y = CGAL::to_double(p.y()) - q_[1], z = CGAL::to_double(p.z()) - q_[2];
     return x * x + y * y + z * z;
+  }
+  // True when the primitive, a triangle or a segment, is surely farther than bound(): CGAL's
+  // functor, which would then keep the best point, is not called (the leaves of the tree come in
+  // pairs, both primitives tested; where the input's triangles are long and thin, a query reaches
+  // many leaves, most of them farther; the functor's projection and exact comparison cost several
+  // times this test). The squared distance in double has a relative error of a few ulps of the
+  // squared lengths it is made of (each difference below is one rounding): a slack of 1e-12 of
+  // their sum covers it. A degenerate triangle or segment may give no finite answer: it is not
+  // filtered, nor other primitives.
+  bool farther_than_bound(const Primitive& primitive) const
+  {
+    typedef typename Traits::Geom_traits::Triangle_3 Triangle_3;
+    typedef typename Traits::Geom_traits::Segment_3 Segment_3;
+    typedef std::decay_t<decltype(CGAL::internal::Primitive_helper<Traits>::get_datum(primitive, traits_))> Datum;
+    constexpr bool triangle = std::is_same<Datum, Triangle_3>::value, segment = std::is_same<Datum, Segment_3>::value;
+    if constexpr(!triangle && !segment) return false;
+    else {
+      const Datum t = CGAL::internal::Primitive_helper<Traits>::get_datum(primitive, traits_);
+      constexpr int n = triangle ? 3 : 2;
+      double v[n][3];
+      for(int i = 0; i < n; ++i)
+        for(int k = 0; k < 3; ++k) v[i][k] = CGAL::to_double(t.vertex(i)[k]);
+      double slack = 0;
+      double d2;
+      if constexpr(triangle) d2 = triangle_squared_distance(v[0], v[1], v[2], slack);
+      else d2 = segment_squared_distance(v[0], v[1], slack);
+      return std::isfinite(d2) && d2 - 1e-12 * slack > bound();
+    }
+  }
+  // The squared distance from the query to the segment ab; `scale` as below.
+  double segment_squared_distance(const double* a, const double* b, double& scale) const
+  {
+    double ab[3], ap[3], bp[3];
+    for(int k = 0; k < 3; ++k) { ab[k] = b[k] - a[k]; ap[k] = q_[k] - a[k]; bp[k] = q_[k] - b[k]; }
+    const double l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2], d = ab[0] * ap[0] + ab[1] * ap[1] + ab[2] * ap[2];
+    scale = l2 + ap[0] * ap[0] + ap[1] * ap[1] + ap[2] * ap[2] + bp[0] * bp[0] + bp[1] * bp[1] + bp[2] * bp[2];
+    const double t = d <= 0 ? 0 : d >= l2 ? 1 : d / l2;
+    double r2 = 0;
+    for(int k = 0; k < 3; ++k) { const double r = ap[k] - t * ab[k]; r2 += r * r; }
+    return r2;
+  }
+  // The squared distance from the query to the triangle abc (the region of its closest point found
+  // from the signs of dot products, as in Ericson's "Real-Time Collision Detection", 5.1.5);
+  // `scale`, the sum of the squared lengths the result is computed from.
+  double triangle_squared_distance(const double* a, const double* b, const double* c, double& scale) const
+  {
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    for(int k = 0; k < 3; ++k) {
+      ab[k] = b[k] - a[k]; ac[k] = c[k] - a[k];
+      ap[k] = q_[k] - a[k]; bp[k] = q_[k] - b[k]; cp[k] = q_[k] - c[k];
+    }
+    auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    // the squared length of x - s y - t z
+    auto residual = [](const double* x, double s, const double* y, double t, const double* z) {
+      double r2 = 0;
+      for(int k = 0; k < 3; ++k) { const double r = x[k] - s * y[k] - t * z[k]; r2 += r * r; }
+      return r2;
+    };
+    scale = dot(ab, ab) + dot(ac, ac) + dot(ap, ap) + dot(bp, bp) + dot(cp, cp);
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if(d1 <= 0 && d2 <= 0) return dot(ap, ap);   // vertex a
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if(d3 >= 0 && d4 <= d3) return dot(bp, bp);   // vertex b
+    const double vc = d1 * d4 - d3 * d2;
+    if(vc <= 0 && d1 >= 0 && d3 <= 0) return residual(ap, d1 / (d1 - d3), ab, 0, ac);   // edge ab
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if(d6 >= 0 && d5 <= d6) return dot(cp, cp);   // vertex c
+    const double vb = d5 * d2 - d1 * d6;
+    if(vb <= 0 && d2 >= 0 && d6 <= 0) return residual(ap, 0, ab, d2 / (d2 - d6), ac);   // edge ac
+    const double va = d3 * d6 - d5 * d4;
+    if(va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {   // edge bc
+      const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+      double bc[3];
+      for(int k = 0; k < 3; ++k) bc[k] = c[k] - b[k];
+      return residual(bp, w, bc, 0, ac);
+    }
+    // the face; on a (nearly) degenerate triangle, rounding may come here with coordinates out of
+    // range: NaN, no answer
+    const double sum = va + vb + vc, v = vb / sum, w = vc / sum;
+    if(!(v >= -1e-6 && w >= -1e-6 && v + w <= 1 + 1e-6)) return std::numeric_limits<double>::quiet_NaN();
+    return residual(ap, v, ab, w, ac);
   }
   double box_distance(const CGAL::Bbox_3& b) const
   {

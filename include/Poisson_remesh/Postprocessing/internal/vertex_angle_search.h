@@ -263,17 +263,19 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
       if(!(ln > 0)) return start;
       nn = nv / ln;
-      Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
-      if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
-      u = u / std::sqrt(CGAL::to_double(u.squared_length()));
-      const Vector_3 w = CGAL::cross_product(nn, u);
-      // (eight directions in the tangent plane, 45 degrees apart: their cosines and sines once)
-      static const std::array<std::array<double, 2>, 8> compass = [] {
-        std::array<std::array<double, 2>, 8> cs{};
-        for(int k = 0; k < 8; ++k) cs[std::size_t(k)] = {std::cos(k * CGAL_PI / 4), std::sin(k * CGAL_PI / 4)};
-        return cs;
-      }();
-      if(!smoothing) for(const auto& cs : compass) dirs.push_back(cs[0] * u + cs[1] * w);
+      if(!smoothing) {   // (the smoothing climbs the gradient instead: no compass)
+        Vector_3 u = CGAL::cross_product(nn, Vector_3(1, 0, 0));
+        if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
+        u = u / std::sqrt(CGAL::to_double(u.squared_length()));
+        const Vector_3 w = CGAL::cross_product(nn, u);
+        // (eight directions in the tangent plane, 45 degrees apart: their cosines and sines once)
+        static const std::array<std::array<double, 2>, 8> compass = [] {
+          std::array<std::array<double, 2>, 8> cs{};
+          for(int k = 0; k < 8; ++k) cs[std::size_t(k)] = {std::cos(k * CGAL_PI / 4), std::sin(k * CGAL_PI / 4)};
+          return cs;
+        }();
+        for(const auto& cs : compass) dirs.push_back(cs[0] * u + cs[1] * w);
+      }
     }
     if(dirs.empty() && !(smoothing && c == 0)) return start;
     // (a bounded number of steps: where gains never stop, however small -- a flat sheet folded
@@ -282,8 +284,6 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // and a projection per trial point costs most where the input's triangles are long and thin)
     const bool in_plane = (smoothing || only != nullptr) && c == 0;
     double step = (smoothing ? 0.1 : 0.2) * mean;
-    const std::size_t nd = dirs.size();
-    std::size_t trials = smoothing ? 10 * nd : 0, first = 0;
     if(smoothing && c == 0) {
       // a free vertex's smoothing climbs the gradient of the sum (smooth between the changes of
       // which corner is a triangle's smallest): a step along the gradient, or, when that does not
@@ -315,6 +315,8 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       // within the trials that polling every direction at each of its 10 steps would make; the
       // angle optimization, whose smallest angle is not smooth, takes the best of all directions
       // at each step
+      const std::size_t nd = dirs.size();
+      std::size_t trials = smoothing ? 10 * nd : 0, first = 0;
       for(int iteration = 0; iteration < (smoothing ? int(10 * nd) : 40) && step > 0.01 * mean; ++iteration) {
         Point_3 best_q = p;
         double best_here = best;
