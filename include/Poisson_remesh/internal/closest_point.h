@@ -10,7 +10,9 @@
 // box is pruned against a tight bound, and a box test is six comparisons. Which candidate is the
 // closer is still decided by the tree's own traits (CGAL's Closest_point functor, exact
 // predicates), so the closest point is CGAL's; only the boxes' pruning is in double precision,
-// with a relative slack of 1e-12 so that rounding never prunes a box the exact test would visit.
+// with a relative slack of 1e-12 so that rounding never prunes a box the exact test would visit;
+// a leaf's triangle or segment whose distance in double is surely beyond the best so far is passed
+// over before that functor (it would keep the best point).
 // Without a hint the search needs no k-d tree: it starts from a point farther than the whole tree.
 // (With a kernel whose coordinates are not doubles, the boxes are pruned with the coordinates
 // rounded to double: a box may then be passed over for a point closer by that rounding alone.)
