@@ -17,6 +17,7 @@
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -1029,8 +1030,8 @@ TEST_CASE("the nearer-first projection finds CGAL's closest point", "[projection
 // internal/closest_point.h's distance filter (a leaf's triangle or segment passed over when its
 // distance in double is surely beyond the best so far): CGAL's AABB_tree::closest_point is the
 // judge, on what makes that distance least exact -- a fan of long, thin triangles far from the
-// origin, triangles with collinear or equal corners -- and on a tree of segments (the feature
-// curves') with a segment of zero length
+// origin, triangles with collinear or equal corners, needles -- and on a tree of segments (the
+// feature curves') with a segment of zero length
 TEST_CASE("the projection's distance filter keeps CGAL's closest point", "[projection]")
 {
   const K::Vector_3 far_away(1.0e4, -3.0e3, 7.0e3);
@@ -1065,6 +1066,32 @@ TEST_CASE("the projection's distance filter keeps CGAL's closest point", "[proje
     worst = std::max(worst, std::abs(std::sqrt(CGAL::squared_distance(q, PR::internal::closest_point(tree, q))) - judge));
   }
   CHECK(worst <= 1e-9);   // (a few ulps of coordinates near 1e4)
+
+  // needles (a corner a height h off the opposite side, h down to 1e-8 of the length), a query on
+  // the needle, and as hint a point of a triangle 1e-4 away: a needle's face distance in double is
+  // not to be trusted there, and the needle is the closest
+  typedef std::vector<K::Triangle_3>::const_iterator Triangle_iterator;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangle_iterator>>> Triangle_tree;
+  std::uniform_real_distribution<double> fraction(0, 1);
+  std::size_t farther = 0;
+  for(const double offset : {0.0, 1.0e4})
+    for(const double h : {1e-5, 1e-7, 1e-8})
+      for(int i = 0; i < 300; ++i) {
+        const K::Vector_3 o(offset, offset, offset);
+        const double t = 0.2 + 0.6 * fraction(random);
+        const Point a0 = Point(0, 0, 0) + o, b0 = Point(1, 0.3, 0.2) + o, c0 = Point(t, 0.3 * t + h, 0.2 * t) + o;
+        const std::vector<K::Triangle_3> triangles{K::Triangle_3(a0, b0, c0),
+                                                   K::Triangle_3(Point(-1, -1, 1e-4) + o, Point(2, -1, 1e-4) + o, Point(0, 2, 1e-4) + o)};
+        Triangle_tree needle(triangles.cbegin(), triangles.cend());
+        double wa = fraction(random), wb = fraction(random), wc = fraction(random);
+        const double sum = wa + wb + wc;
+        wa /= sum; wb /= sum; wc /= sum;
+        const Point q(wa * a0.x() + wb * b0.x() + wc * c0.x(), wa * a0.y() + wb * b0.y() + wc * c0.y(), wa * a0.z() + wb * b0.z() + wc * c0.z());
+        const Point hint = triangles[1].supporting_plane().projection(q);
+        const double judge = CGAL::to_double(needle.squared_distance(q));
+        if(CGAL::to_double(CGAL::squared_distance(q, PR::internal::closest_point(needle, q, hint))) > judge * (1 + 1e-9) + 1e-24) ++farther;
+      }
+  CHECK(farther == 0);
 
   typedef std::vector<K::Segment_3>::const_iterator Iterator;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, Iterator>>> Segment_tree;

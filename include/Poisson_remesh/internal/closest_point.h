@@ -20,6 +20,7 @@
 #ifndef POISSON_REMESH_INTERNAL_CLOSEST_POINT_H
 #define POISSON_REMESH_INTERNAL_CLOSEST_POINT_H
 
+#include <CGAL/AABB_tree/internal/Primitive_helper.h>
 #include <CGAL/Bbox_3.h>
 #include <CGAL/assertions.h>
 #include <CGAL/number_utils.h>
@@ -93,10 +94,13 @@ private:
   // functor, which would then keep the best point, is not called (the leaves of the tree come in
   // pairs, both primitives tested; where the input's triangles are long and thin, a query reaches
   // many leaves, most of them farther; the functor's projection and exact comparison cost several
-  // times this test). The squared distance in double has a relative error of a few ulps of the
-  // squared lengths it is made of (each difference below is one rounding): a slack of 1e-12 of
-  // their sum covers it. A degenerate triangle or segment may give no finite answer: it is not
-  // filtered, nor other primitives.
+  // times this test). The squared distance in double has an error of a few ulps of the squared
+  // lengths it is made of (each difference below is one rounding; a triangle's face is measured
+  // only where that holds, see below): a slack of 1e-10 of their sum covers it. The best point so
+  // far is CGAL's construction, rounded to the coordinates' ulps: its distance may be short of the
+  // exact one by about twice the distance times those ulps, which a second slack covers (a tie
+  // with it still goes to CGAL's exact comparison). A degenerate triangle or segment may give no
+  // finite answer: it is not filtered, nor other primitives.
   bool farther_than_bound(const Primitive& primitive) const
   {
     typedef typename Traits::Geom_traits::Triangle_3 Triangle_3;
@@ -105,16 +109,22 @@ private:
     constexpr bool triangle = std::is_same<Datum, Triangle_3>::value, segment = std::is_same<Datum, Segment_3>::value;
     if constexpr(!triangle && !segment) return false;
     else {
-      const Datum t = CGAL::internal::Primitive_helper<Traits>::get_datum(primitive, traits_);
+      const auto& t = CGAL::internal::Primitive_helper<Traits>::get_datum(primitive, traits_);
       constexpr int n = triangle ? 3 : 2;
       double v[n][3];
+      double magnitude = (std::max)({std::abs(q_[0]), std::abs(q_[1]), std::abs(q_[2])});
       for(int i = 0; i < n; ++i)
-        for(int k = 0; k < 3; ++k) v[i][k] = CGAL::to_double(t.vertex(i)[k]);
-      double slack = 0;
+        for(int k = 0; k < 3; ++k) {
+          v[i][k] = CGAL::to_double(t.vertex(i)[k]);
+          magnitude = (std::max)(magnitude, std::abs(v[i][k]));
+        }
+      double scale = 0;
       double d2;
-      if constexpr(triangle) d2 = triangle_squared_distance(v[0], v[1], v[2], slack);
-      else d2 = segment_squared_distance(v[0], v[1], slack);
-      return std::isfinite(d2) && d2 - 1e-12 * slack > bound();
+      if constexpr(triangle) d2 = triangle_squared_distance(v[0], v[1], v[2], scale);
+      else d2 = segment_squared_distance(v[0], v[1], scale);
+      if(!std::isfinite(d2)) return false;
+      const double ulps = 64 * std::numeric_limits<double>::epsilon() * magnitude;
+      return d2 - 1e-10 * scale - 2 * ulps * std::sqrt(d2) - ulps * ulps > bound();
     }
   }
   // The squared distance from the query to the segment ab; `scale` as below.
@@ -164,11 +174,22 @@ private:
       for(int k = 0; k < 3; ++k) bc[k] = c[k] - b[k];
       return residual(bp, w, bc, 0, ac);
     }
-    // the face; on a (nearly) degenerate triangle, rounding may come here with coordinates out of
-    // range: NaN, no answer
-    const double sum = va + vb + vc, v = vb / sum, w = vc / sum;
-    if(!(v >= -1e-6 && w >= -1e-6 && v + w <= 1 + 1e-6)) return std::numeric_limits<double>::quiet_NaN();
-    return residual(ap, v, ab, w, ac);
+    // the face. va + vb + vc is the squared norm of ab x ac; each of them is a difference of
+    // products of dot products, rounded to ulps of (|ab|^2 + |ac|^2)(|ap|^2 + |bp|^2 + |cp|^2):
+    // where the sum is not well above that (a needle of a triangle, or a query far from a small
+    // one), v and w are not known well enough, and the distance to the triangle's box, a lower
+    // bound, is taken instead
+    const double sum = va + vb + vc;
+    if(!(sum > 1e-4 * (dot(ab, ab) + dot(ac, ac)) * (dot(ap, ap) + dot(bp, bp) + dot(cp, cp)))) {
+      double d2 = 0;
+      for(int k = 0; k < 3; ++k) {
+        const double lo = (std::min)({a[k], b[k], c[k]}), hi = (std::max)({a[k], b[k], c[k]});
+        if(q_[k] < lo) d2 += (lo - q_[k]) * (lo - q_[k]);
+        else if(q_[k] > hi) d2 += (q_[k] - hi) * (q_[k] - hi);
+      }
+      return d2;
+    }
+    return residual(ap, vb / sum, ab, vc / sum, ac);
   }
   double box_distance(const CGAL::Bbox_3& b) const
   {
