@@ -4,7 +4,7 @@
 // child box visited first and the box distances compared in double precision.
 //
 // Why not AABB_tree::closest_point: it visits a node's children left one first, whatever their
-// distance, and decides each box with the kernel's filtered sphere-box predicate. The relaxation
+// distance, and decides each box with the kernel's filtered predicate of a ball against a box. The relaxation
 // asks for millions of projections (each Lloyd target, each angle-search trial, each fidelity
 // query); with the nearer child first, the first leaf reached is usually the closest, every other
 // box is pruned against a tight bound, and a box test is six comparisons. Which candidate is the
@@ -127,17 +127,23 @@ private:
       return d2 - 1e-10 * scale - 2 * ulps * std::sqrt(d2) - ulps * ulps > bound();
     }
   }
+  static double dot(const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; }
+  // the squared length of x - s y - t z
+  static double residual(const double* x, double s, const double* y, double t, const double* z)
+  {
+    double r2 = 0;
+    for(int k = 0; k < 3; ++k) { const double r = x[k] - s * y[k] - t * z[k]; r2 += r * r; }
+    return r2;
+  }
   // The squared distance from the query to the segment ab; `scale` as below.
   double segment_squared_distance(const double* a, const double* b, double& scale) const
   {
     double ab[3], ap[3], bp[3];
     for(int k = 0; k < 3; ++k) { ab[k] = b[k] - a[k]; ap[k] = q_[k] - a[k]; bp[k] = q_[k] - b[k]; }
-    const double l2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2], d = ab[0] * ap[0] + ab[1] * ap[1] + ab[2] * ap[2];
-    scale = l2 + ap[0] * ap[0] + ap[1] * ap[1] + ap[2] * ap[2] + bp[0] * bp[0] + bp[1] * bp[1] + bp[2] * bp[2];
+    const double l2 = dot(ab, ab), d = dot(ab, ap);
+    scale = l2 + dot(ap, ap) + dot(bp, bp);
     const double t = d <= 0 ? 0 : d >= l2 ? 1 : d / l2;
-    double r2 = 0;
-    for(int k = 0; k < 3; ++k) { const double r = ap[k] - t * ab[k]; r2 += r * r; }
-    return r2;
+    return residual(ap, t, ab, 0, ab);
   }
   // The squared distance from the query to the triangle abc (the region of its closest point found
   // from the signs of dot products, as in Ericson's "Real-Time Collision Detection", 5.1.5);
@@ -149,22 +155,16 @@ private:
       ab[k] = b[k] - a[k]; ac[k] = c[k] - a[k];
       ap[k] = q_[k] - a[k]; bp[k] = q_[k] - b[k]; cp[k] = q_[k] - c[k];
     }
-    auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-    // the squared length of x - s y - t z
-    auto residual = [](const double* x, double s, const double* y, double t, const double* z) {
-      double r2 = 0;
-      for(int k = 0; k < 3; ++k) { const double r = x[k] - s * y[k] - t * z[k]; r2 += r * r; }
-      return r2;
-    };
-    scale = dot(ab, ab) + dot(ac, ac) + dot(ap, ap) + dot(bp, bp) + dot(cp, cp);
+    const double sides = dot(ab, ab) + dot(ac, ac), ap2 = dot(ap, ap), bp2 = dot(bp, bp), cp2 = dot(cp, cp);
+    scale = sides + ap2 + bp2 + cp2;
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if(d1 <= 0 && d2 <= 0) return dot(ap, ap);   // vertex a
+    if(d1 <= 0 && d2 <= 0) return ap2;   // vertex a
     const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if(d3 >= 0 && d4 <= d3) return dot(bp, bp);   // vertex b
+    if(d3 >= 0 && d4 <= d3) return bp2;   // vertex b
     const double vc = d1 * d4 - d3 * d2;
     if(vc <= 0 && d1 >= 0 && d3 <= 0) return residual(ap, d1 / (d1 - d3), ab, 0, ac);   // edge ab
     const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if(d6 >= 0 && d5 <= d6) return dot(cp, cp);   // vertex c
+    if(d6 >= 0 && d5 <= d6) return cp2;   // vertex c
     const double vb = d5 * d2 - d1 * d6;
     if(vb <= 0 && d2 >= 0 && d6 <= 0) return residual(ap, 0, ab, d2 / (d2 - d6), ac);   // edge ac
     const double va = d3 * d6 - d5 * d4;
@@ -180,15 +180,9 @@ private:
     // one), v and w are not known well enough, and the distance to the triangle's box, a lower
     // bound, is taken instead
     const double sum = va + vb + vc;
-    if(!(sum > 1e-4 * (dot(ab, ab) + dot(ac, ac)) * (dot(ap, ap) + dot(bp, bp) + dot(cp, cp)))) {
-      double d2 = 0;
-      for(int k = 0; k < 3; ++k) {
-        const double lo = (std::min)({a[k], b[k], c[k]}), hi = (std::max)({a[k], b[k], c[k]});
-        if(q_[k] < lo) d2 += (lo - q_[k]) * (lo - q_[k]);
-        else if(q_[k] > hi) d2 += (q_[k] - hi) * (q_[k] - hi);
-      }
-      return d2;
-    }
+    if(!(sum > 1e-4 * sides * (ap2 + bp2 + cp2)))
+      return box_distance(CGAL::Bbox_3((std::min)({a[0], b[0], c[0]}), (std::min)({a[1], b[1], c[1]}), (std::min)({a[2], b[2], c[2]}),
+                                       (std::max)({a[0], b[0], c[0]}), (std::max)({a[1], b[1], c[1]}), (std::max)({a[2], b[2], c[2]})));
     return residual(ap, vb / sum, ab, vc / sum, ac);
   }
   double box_distance(const CGAL::Bbox_3& b) const

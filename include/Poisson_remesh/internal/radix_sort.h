@@ -3,7 +3,7 @@
 // A stable sort of (64-bit key, index) pairs by key (internal), for the grids of the crossing
 // search (internal/self_intersections.h) and of the near points (internal/near_points.h): their
 // pairs are made in increasing index order, so a stable sort by key gives what std::sort of the
-// pairs gives, in linear time. Written by hand, as neither the standard library nor CGAL has a
+// pairs gives, in linear time. Our own code, as neither the standard library nor CGAL has a
 // radix sort: the grids are sorted on one thread, which the parallel mode's others wait for.
 
 #ifndef POISSON_REMESH_INTERNAL_RADIX_SORT_H
