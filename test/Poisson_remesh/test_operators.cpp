@@ -26,6 +26,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <catch2/catch.hpp>
@@ -968,6 +969,103 @@ TEST_CASE("the untangling's face box grid finds every face whose box meets a box
     const double x = 0.031 * (k % 31), y = 0.023 * (k % 43), s = 0.004 * k;
     check(CGAL::Bbox_3(x, y, 0.1, x + s, y + s, 0.35));
   }
+}
+
+// The local repair's crossing checks look for the faces near its region in a grid of the other
+// faces' boxes (face_box_grid.h, Region_near_faces) while the region's vertices move and its edges
+// flip, split and join again, kept or taken back. Judged by a scan of every face's box, and by
+// CGAL's self_intersections on the faces that scan finds near the changed ones.
+TEST_CASE("the local repair's grid finds the faces near its region through trials and after them", "[operators][intersections]")
+{
+  // two 10 x 10 sheets 0.02 apart (the other sheet's faces are near every region); the regions'
+  // vertices are lifted through the upper sheet
+  Mesh m = square(10);
+  {
+    Mesh upper = square(10);
+    for(V v : vertices(upper)) upper.point(v) = Point(upper.point(v).x() + 0.003, upper.point(v).y(), 0.02);
+    CGAL::copy_face_graph(upper, m);
+  }
+  typedef Mesh::Face_index F;
+  typedef std::pair<F, F> Pair;
+  auto box_of = [&](F f) {
+    CGAL::Bbox_3 b;
+    for(V v : vertices_around_face(halfedge(f, m), m)) b += m.point(v).bbox();
+    return b;
+  };
+  P::internal::Region_near_faces<Mesh, decltype(box_of)> near(m, box_of);
+  std::size_t found = 0;
+  // every face whose box meets q is among the answers
+  auto check_query = [&](const CGAL::Bbox_3& q) {
+    std::vector<F> answer, expected;
+    near(q, answer);
+    for(F f : faces(m)) if(CGAL::do_overlap(box_of(f), q)) expected.push_back(f);
+    std::sort(answer.begin(), answer.end());
+    for(F f : expected) CHECK(std::binary_search(answer.begin(), answer.end(), f));
+    found += expected.size();
+  };
+  // the pairs near `changed`: CGAL's among the faces whose boxes meet a changed face's box
+  std::size_t crossing = 0;
+  auto check_pairs = [&](const std::vector<V>& region) {
+    const auto changed = PR::internal::faces_around(m, region);
+    std::vector<F> nearby;
+    for(F f : faces(m))
+      for(F c : changed)
+        if(CGAL::do_overlap(box_of(f), box_of(c))) { nearby.push_back(f); break; }
+    std::vector<Pair> expected;
+    CGAL::Polygon_mesh_processing::self_intersections(nearby, m, std::back_inserter(expected));
+    for(Pair& p : expected) if(p.second < p.first) std::swap(p.first, p.second);
+    std::sort(expected.begin(), expected.end());
+    CHECK(PR::internal::intersecting_pairs_near(m, changed, near) == expected);
+    crossing += expected.size();
+    CGAL::Bbox_3 all;
+    for(F c : changed) all += box_of(c);
+    check_query(all);
+  };
+  std::vector<V> lower;
+  for(V v : vertices(m)) if(m.point(v).z() == 0 && !is_border(v, m)) lower.push_back(v);
+  for(std::size_t k = 0; k < 6; ++k) {
+    // the region: an inner vertex of the lower sheet and its rings, two deep
+    std::vector<V> region{lower[(k * 37 + 11) % lower.size()]};
+    for(int ring = 0; ring < 2; ++ring) {
+      const std::vector<V> inner = region;
+      for(V x : inner)
+        for(auto h : halfedges_around_target(halfedge(x, m), m))
+          if(std::find(region.begin(), region.end(), source(h, m)) == region.end()) region.push_back(source(h, m));
+    }
+    near.begin(region);
+    std::vector<std::pair<V, Point>> was;
+    for(V x : region) was.push_back({x, m.point(x)});
+    // moves: up through the upper sheet
+    for(std::size_t i = 0; i < region.size(); ++i) {
+      const Point p = m.point(region[i]);
+      m.point(region[i]) = Point(p.x() + 0.004 * double(i % 3), p.y(), 0.015 + 0.01 * double(i % 4));
+    }
+    check_pairs(region);
+    // a flip of an edge of the first vertex, a split of another
+    const auto h = halfedge(region[0], m);
+    CGAL::Euler::flip_edge(h, m);
+    check_pairs(region);
+    const auto g = next(h, m);
+    const V a = source(g, m), b = target(g, m);
+    const V added = Context::insert_vertex_on_edge(g, CGAL::midpoint(m.point(a), m.point(b)) + K::Vector_3(0, 0, 0.01), m);
+    std::vector<V> with_added = region;
+    with_added.push_back(added);
+    check_pairs(with_added);
+    if(k % 2 == 1) {   // taken back: the split vertex removed, the flip flipped back, the points put back
+      Context::remove_vertex_on_edge(added, a, b, m);
+      CGAL::Euler::flip_edge(h, m);
+      for(const auto& [x, p] : was) m.point(x) = p;
+      check_pairs(region);
+    }
+    near.end();
+    // after it, boxes from a point to a fifth of the square all over both sheets
+    for(int q = 0; q < 30; ++q) {
+      const double x = 0.033 * (q % 31), y = 0.041 * ((q * 7) % 25), side = 0.007 * q;
+      check_query(CGAL::Bbox_3(x, y, -0.01, x + side, y + side, 0.05));
+    }
+  }
+  CHECK(found > 1000);
+  CHECK(crossing > 0);
 }
 
 // internal/closest_point.h, the projections of every step: CGAL's AABB_tree::closest_point is the

@@ -21,6 +21,7 @@
 
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
+#include <Poisson_remesh/Postprocessing/internal/face_box_grid.h>
 #include <Poisson_remesh/Postprocessing/internal/vertex_angle_search.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <algorithm>
@@ -114,6 +115,15 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
   if(sharp.empty()) return 0;
   std::stable_sort(sharp.begin(), sharp.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
 
+  // the crossing checks after each step of a trial look for the faces near the region in a grid
+  // of the other faces' boxes, not in a scan of every face (most of the repair's time on an input
+  // of many parts when it was one scan per step): the same pairs
+  auto box_of = [&](face_descriptor f) {
+    const halfedge_descriptor h = halfedge(f, m);
+    return get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox();
+  };
+  internal::Region_near_faces<Mesh, decltype(box_of)> near_faces(m, box_of);
+
   auto no_pin = [](vertex_descriptor) -> const Point_3* { return nullptr; };
   // the candidates for one triangle: none, a flip or a split of the edge (v[k], v[k+1])
   enum class Operation { none, flip, split };
@@ -151,8 +161,13 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
         ring_begin = ring_end;
       }
     }
+    // (the region's faces are about to change: the grid answers for the others only, until its
+    // faces are filed again when this triangle's treatment ends, however it ends)
+    near_faces.begin(region);
+    struct Region_done { decltype(near_faces)& near; ~Region_done() { near.end(); } } region_done{near_faces};
     const std::vector<double> before = internal::sharp_angles_around(ctx, m, region, sliver);
-    const std::size_t crossings_before = Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, region)).size();
+    const std::size_t crossings_before =
+      Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, region), near_faces).size();
     std::vector<std::pair<vertex_descriptor, Point_3>> positions;
     for(vertex_descriptor x : region) positions.push_back({x, get(vpm, x)});
 
@@ -192,14 +207,15 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
           searched.push_back(made.added);
         }
         // a change that crosses the mesh is taken back
-        if(Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, searched)).size() > crossings_before) {
+        if(Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, searched), near_faces).size() > crossings_before) {
           take_back(made, c);
           return;
         }
       }
       for(unsigned int round = 0; round < s.search_rounds; ++round)
         if(Postprocessing::internal::vertex_angle_search<CGAL::Sequential_tag>(ctx, m, is_feature, is_fixed, Angle_goal::smallest, s.searched_angle,
-                                                                              sliver_angle, 0 /* (no pinned_only moves) */, scratch, no_pin, false, nullptr, &searched) == 0)
+                                                                              sliver_angle, 0 /* (no pinned_only moves) */, scratch, no_pin, false, nullptr, &searched,
+                                                                              near_faces) == 0)
           break;
       made.valid = true;
       result = internal::sharp_angles_around(ctx, m, searched, sliver);

@@ -2,17 +2,20 @@
 //
 // The bounding boxes of a mesh's faces in a uniform grid, kept up to date as faces move (internal):
 // the faces whose boxes meet a given box are found among the few cells it covers instead of by a
-// scan of every face. The untangling asks it once per trial position of a vertex or flip.
+// scan of every face. The untangling asks it once per trial position of a vertex or flip; the
+// local repair's crossing checks, through Region_near_faces, once per trial step.
 
 #ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
 #define POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <boost/graph/graph_traits.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <unordered_map>
@@ -64,8 +67,10 @@ public:
   {
     for(face_descriptor g : big_)
       if(CGAL::do_overlap(entries_.at(g).box, b)) out.push_back(g);
+    // (a query box may cover as many cells as there are faces: walking them costs about what a
+    // scan of every face does)
     std::int64_t lo[3], hi[3];
-    if(!range(b, lo, hi)) {   // (a huge query: every face is looked at)
+    if(!range(b, lo, hi, (std::max)(double(max_cells), double(entries_.size())))) {   // (a huge query: every face is looked at)
       for(const auto& e : entries_)
         if(!e.second.big && CGAL::do_overlap(e.second.box, b)) out.push_back(e.first);
       return;
@@ -82,8 +87,8 @@ public:
 
 private:
   static constexpr std::int64_t max_cells = 64;
-  // the cells of b's box, false when it covers more than max_cells (or is not finite)
-  bool range(const CGAL::Bbox_3& b, std::int64_t lo[3], std::int64_t hi[3]) const
+  // the cells of b's box, false when it covers more than `limit` (or is not finite)
+  bool range(const CGAL::Bbox_3& b, std::int64_t lo[3], std::int64_t hi[3], double limit = double(max_cells)) const
   {
     double count = 1;
     for(int i = 0; i < 3; ++i) {
@@ -93,7 +98,7 @@ private:
       hi[i] = std::int64_t(c);
       count *= double(hi[i] - lo[i] + 1);
     }
-    return count <= double(max_cells);
+    return count <= limit;
   }
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z)
   {
@@ -114,6 +119,8 @@ private:
     e.keys.erase(std::unique(e.keys.begin(), e.keys.end()), e.keys.end());
     for(std::uint64_t k : e.keys) cells_[k].push_back(f);
   }
+public:
+  /// f is no longer a face (or no longer to be found)
   void remove(face_descriptor f)
   {
     const auto it = entries_.find(f);
@@ -125,12 +132,85 @@ private:
       c.erase(std::find(c.begin(), c.end(), f));
     }
     e.keys.clear();
+    entries_.erase(it);
   }
 
+private:
   double cell_ = 1;
   std::map<face_descriptor, Entry> entries_;
   std::unordered_map<std::uint64_t, std::vector<face_descriptor>> cells_;
   std::vector<face_descriptor> big_;
+};
+
+/// The faces near a region of a mesh that changes only there, for intersecting_pairs_near's
+/// `near_faces` (Relaxation_context.h): the local repair's trials move the region's vertices, flip
+/// and split its edges and take all that back, and check for new crossings after each step. The
+/// boxes of the faces away from the region are kept in a Face_box_grid, current because they do
+/// not change; the faces around the region's vertices, whose boxes and even descriptors a trial
+/// changes, are read from the mesh at each call. begin(region) before the region changes (the
+/// faces around its vertices then are the ones the grid no longer answers for), end() after its
+/// last change (their places in the grid updated: faces gone removed, new ones filed). Between the
+/// two, no vertex outside the region may move, and every face that a change makes or changes must
+/// have a corner in the region (a split's new vertex has: it lies on an edge of the region).
+template <class Mesh, class BoxOf>
+class Region_near_faces
+{
+  typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+  typedef typename boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+
+public:
+  /// every face of m filed with its box, `box_of(f)`
+  Region_near_faces(const Mesh& m, BoxOf box_of) : m_(m), box_of_(box_of), grid_(faces(m), box_of) {}
+
+  /// the vertices of `region` are about to move, or their faces to change
+  void begin(const std::vector<vertex_descriptor>& region)
+  {
+    region_ = region;
+    filed_ = faces_around(region_);
+  }
+
+  /// the region's changes are over: its faces filed as they are now
+  void end()
+  {
+    const std::vector<face_descriptor> now = faces_around(region_);
+    for(face_descriptor f : filed_)
+      if(!std::binary_search(now.begin(), now.end(), f)) grid_.remove(f);
+    for(face_descriptor f : now) grid_.update(f, box_of_(f));
+    region_.clear();
+    filed_.clear();
+  }
+
+  /// appends to `out` every face whose box meets `b`, and more: the faces around the region
+  void operator()(const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) const
+  {
+    const std::size_t first = out.size();
+    grid_.overlapping(b, out);
+    // (the grid's answers for the region's faces as they were filed: replaced by its faces now)
+    out.erase(std::remove_if(out.begin() + std::ptrdiff_t(first), out.end(),
+                             [&](face_descriptor f) { return std::binary_search(filed_.begin(), filed_.end(), f); }),
+              out.end());
+    const std::vector<face_descriptor> now = faces_around(region_);
+    out.insert(out.end(), now.begin(), now.end());
+  }
+
+private:
+  // the faces around the vertices of vs, sorted, each once
+  std::vector<face_descriptor> faces_around(const std::vector<vertex_descriptor>& vs) const
+  {
+    std::vector<face_descriptor> out;
+    for(vertex_descriptor v : vs)
+      for(auto h : CGAL::halfedges_around_target(halfedge(v, m_), m_))
+        if(!is_border(h, m_)) out.push_back(face(h, m_));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  const Mesh& m_;
+  BoxOf box_of_;
+  Face_box_grid<Mesh> grid_;
+  std::vector<vertex_descriptor> region_;
+  std::vector<face_descriptor> filed_;   // (sorted)
 };
 
 } // namespace internal

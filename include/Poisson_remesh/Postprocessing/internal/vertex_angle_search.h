@@ -110,13 +110,17 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
 /// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
 /// the number of vertices moved. With `only` (not null; Angle_goal::smallest), the vertices searched
 /// are those of `only`, in its order, at a triangle sharper than `optimized_angle`, the free ones
-/// in their tangent plane, projected once (the local repair's searches).
-template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition>
+/// in their tangent plane, projected once (the local repair's searches). `near_faces`: where the
+/// check for new crossings looks for the faces near the moved ones (Relaxation_context.h's
+/// intersecting_pairs_near; by default every face).
+template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition,
+          class NearFaces = Poisson_remesh::internal::All_faces>
 std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCorner is_corner, Angle_goal goal,
                                 double optimized_angle, double sliver_angle, double max_deviation, Relaxation_statistics& stats,
                                 PinPosition pin_position, bool pinned_only,
                                 std::map<typename boost::graph_traits<Mesh>::vertex_descriptor, std::uint64_t>* unmoved = nullptr,
-                                const std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>* only = nullptr)
+                                const std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>* only = nullptr,
+                                const NearFaces& near_faces = NearFaces())
 {
   typedef typename Context::Point_3 Point_3;
   typedef typename Context::Vector_3 Vector_3;
@@ -404,7 +408,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       const std::size_t crossing = ctx.template for_vertices_of_new_intersections_after_moves<ConcurrencyTag>(m, from, changed, [&](vertex_descriptor x) {
         auto it = std::lower_bound(from.begin(), from.end(), x, [](const auto& y, vertex_descriptor z) { return y.first < z; });
         if(it != from.end() && it->first == x && get(vpm, x) != it->second) { put(vpm, x, it->second); ++back; taken_back.push_back(x); }
-      });
+      }, near_faces);
       // (a mesh that cuts itself everywhere -- folded input -- is left as it was: not worth the checks)
       if(round == 0 && crossing > num_faces(m)) {
         for(const auto& x : from) put(vpm, x.first, x.second);

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -52,14 +53,20 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m, const FaceRange& range)
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh>
 Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs<ConcurrencyTag>(m, faces(m)); }
 
+// Where intersecting_pairs_near looks for the faces near the changed ones: every face of the mesh.
+struct All_faces {};
+
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
 // of `changed` moved or are new. A box search of the changed faces against all faces, then
 // CGAL's exact test on that neighbourhood alone (a whole-mesh check per undo round would test
 // again every pair that no move touched); when most faces changed, the whole mesh's pairs (a superset: the box
-// search would only repeat self_intersections' own).
-template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange>
-Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed)
+// search would only repeat self_intersections' own). `near_faces(box, out)`, when given, appends
+// to `out` every face whose box (as it is now) meets `box`, or more (the box search then looks at
+// those alone): a scan of every face per call is what the operators that check after each small
+// trial cannot afford (Postprocessing/internal/face_box_grid.h). The pairs are the same.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class FaceRange, class NearFaces = All_faces>
+Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed, const NearFaces& near_faces = NearFaces())
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
@@ -98,7 +105,13 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
     }
     const std::int64_t last[3] = {index(all_mine.xmax(), 0), index(all_mine.ymax(), 1), index(all_mine.zmax(), 2)};
     // (each face at once with CGAL::Parallel_tag, the grid only read; taken in in the faces' order)
-    const std::vector<face_descriptor> all(faces(m).begin(), faces(m).end());
+    std::vector<face_descriptor> all;
+    if constexpr(std::is_same<NearFaces, All_faces>::value) all.assign(faces(m).begin(), faces(m).end());
+    else {   // (the candidates, each once, in the descriptors' order)
+      near_faces(all_mine, all);
+      std::sort(all.begin(), all.end());
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+    }
     std::vector<std::int8_t> is_near(all.size(), 0);
     for_each_index<ConcurrencyTag>(all.size(), [&](std::size_t i) {
       const face_descriptor f = all[i];
@@ -304,11 +317,13 @@ public:
   // state (most often nothing intersects now and nothing more is asked). Returns the number of
   // pairs that intersect now near `changed`.
   // (`ConcurrencyTag`: the searches' mode, see intersecting_pairs)
-  template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class Moved, class FaceRange, class F>
-  std::size_t for_vertices_of_new_intersections_after_moves(Mesh& m, const Moved& moved, const FaceRange& changed, F f) const
+  // (`near_faces`: see intersecting_pairs_near)
+  template <class ConcurrencyTag = CGAL::Sequential_tag, class Mesh, class Moved, class FaceRange, class F, class NearFaces = All_faces>
+  std::size_t for_vertices_of_new_intersections_after_moves(Mesh& m, const Moved& moved, const FaceRange& changed, F f,
+                                                            const NearFaces& near_faces = NearFaces()) const
   {
     typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-    const auto now = internal::intersecting_pairs_near<ConcurrencyTag>(m, changed);
+    const auto now = internal::intersecting_pairs_near<ConcurrencyTag>(m, changed, near_faces);
     if(now.empty()) return 0;
     std::vector<face_descriptor> involved;
     for(const auto& fp : now) { involved.push_back(fp.first); involved.push_back(fp.second); }
