@@ -33,6 +33,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -104,6 +105,11 @@ public:
     faces_.do_not_accelerate_distance_queries();   // (internal/closest_point.h needs no k-d tree)
   }
   Point_3 project(const Point_3& p) const { return curves_.empty() ? internal::closest_point(faces_, p) : curves_.closest_point(p); }
+  // the same when it is closer to p than `start` (any point), else `start`
+  Point_3 project(const Point_3& p, const Point_3& start) const
+  {
+    return curves_.empty() ? internal::closest_point(faces_, p, start) : curves_.closest_point(p, start);
+  }
 
 private:
   Feature_curves<K> curves_;
@@ -272,6 +278,9 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     if constexpr(default_relaxer) relaxer.emplace(input, features);
     else projector.emplace(input, features);
     auto project_on_features = [&](const Point_3& p) { return relaxer ? relaxer->project_on_features(p) : projector->project(p); };
+    auto project_on_features_from = [&](const Point_3& p, const Point_3& start) {
+      return relaxer ? relaxer->project_on_features(p, start) : projector->project(p, start);
+    };
     progress.set_span(0.4, 1.0);
     auto point = [&](vertex_descriptor v) { return get(get(CGAL::vertex_point, output), v); };
     // an output feature edge joins two feature (or corner) samples along an input feature curve
@@ -281,8 +290,14 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
       if(ka != int(Sample_kind::corner) && ka != int(Sample_kind::feature)) return false;
       if(kb != int(Sample_kind::corner) && kb != int(Sample_kind::feature)) return false;
       const Point_3 mid = CGAL::midpoint(point(a), point(b));
-      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, project_on_features(mid)));
-      if(!(d2 < 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b))))) return false;
+      const double limit = 0.0025 * CGAL::to_double(CGAL::squared_distance(point(a), point(b)));
+      // (only a closest point within sqrt(limit) of mid counts: the search starts from a point just
+      // beyond that distance and passes over every part of the curves farther than it, most of
+      // them; where that point rounds back to within it, the whole search)
+      const Point_3 beyond = mid + typename K::Vector_3(1.000001 * std::sqrt(limit), 0, 0);
+      const bool bounded = CGAL::to_double(CGAL::squared_distance(mid, beyond)) > limit;
+      const double d2 = CGAL::to_double(CGAL::squared_distance(mid, bounded ? project_on_features_from(mid, beyond) : project_on_features(mid)));
+      if(!(d2 < limit)) return false;
       // a chord of a straight feature curve is no feature edge: when the vertex opposite it in one
       // of its triangles lies on the curve between a and b (the triangle is flat, a-c-b is the
       // curve), the edge may be flipped away

@@ -1213,6 +1213,47 @@ TEST_CASE("the projection's distance filter keeps CGAL's closest point", "[proje
   CHECK(worst_segment <= 1e-14);
 }
 
+// A projection onto the feature curves from a start point (the driver's feature-edge test asks
+// only whether the curves come within a distance: its search starts from a point at that
+// distance): CGAL's AABB_tree::closest_point on the curves' segments is the judge; the answer is
+// its closest point when that is nearer than the start, else the start itself.
+TEST_CASE("a projection onto the features from a start point finds CGAL's closest point within the start's distance", "[projection]")
+{
+  // a square of 6 x 6 cells folded 90 degrees along x = 0.5: the fold and the border are features
+  Mesh m = square(6);
+  for(V v : vertices(m)) {
+    const Point p = m.point(v);
+    if(p.x() > 0.5) m.point(v) = Point(0.5, p.y(), p.x() - 0.5);
+  }
+  const PR::Feature_set<Mesh> features = PR::detect_features(m);
+  std::vector<K::Segment_3> segments;
+  for(auto e : edges(m))
+    if(features.is_feature(e)) segments.emplace_back(m.point(source(halfedge(e, m), m)), m.point(target(halfedge(e, m), m)));
+  REQUIRE(segments.size() > 24);
+  CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_segment_primitive<K, std::vector<K::Segment_3>::const_iterator>>> judge(segments.begin(), segments.end());
+  const PR::Lloyd_relaxer<Mesh, K> relaxer(m, features);
+  std::size_t nearer = 0, beyond = 0;
+  for(int k = 0; k < 400; ++k) {
+    const Point q(0.013 * (k % 83), 0.017 * (k % 61), 0.011 * (k % 47) - 0.1);
+    const Point c = judge.closest_point(q);
+    const double d2 = CGAL::squared_distance(q, c);
+    // a start at 0.5 to 1.5 times the curves' distance, in one of three directions
+    const double f = 0.5 + double(k % 11) / 10;
+    const K::Vector_3 dir = k % 3 == 0 ? K::Vector_3(1, 0, 0) : k % 3 == 1 ? K::Vector_3(0, -0.6, 0.8) : K::Vector_3(0, 0, -1);
+    const Point start = q + f * std::sqrt(d2) * dir;
+    const Point got = relaxer.project_on_features(q, start);
+    if(CGAL::squared_distance(q, start) > d2 * (1 + 1e-9)) {
+      ++nearer;
+      CHECK(CGAL::squared_distance(q, got) == Approx(d2).margin(1e-15));   // (the same point, or one as near)
+    } else if(CGAL::squared_distance(q, start) < d2 * (1 - 1e-9)) {
+      ++beyond;
+      CHECK(got == start);
+    }
+  }
+  CHECK(nearer > 100);
+  CHECK(beyond > 100);
+}
+
 // internal/vector_angle.h, the relaxation's and the tessellation's triangle angles: std::atan2 is the judge
 TEST_CASE("the vector angle is atan2's to the last bits", "[projection]")
 {

@@ -302,6 +302,9 @@ public:
   Point_3 project_on_surface(const Point_3& p) const { return context_.project_on_surface(p); }
   /// the point of the input's feature edges closest to `p` (of the surface, without features)
   Point_3 project_on_features(const Point_3& p) const { return context_.project_on_features(p); }
+  /// the same when it is closer to `p` than `start` (any point), else `start`: the search passes
+  /// over every part of the features farther than `start`
+  Point_3 project_on_features(const Point_3& p, const Point_3& start) const { return context_.project_on_features(p, start); }
 
   /// the Lloyd step weights each ring triangle's centroid by its area (Eq. 6; the default), or
   /// all alike (false)

@@ -202,7 +202,8 @@ public:
   Point_3 project_on_features(const Point_3& p) const { return curves_.empty() ? project_on_surface(p) : curves_.closest_point(p); }
   /// The same with `hint`, a point known to lie on the input surface (on a feature curve for
   /// project_on_features), near p: the search starts with its distance as the bound, which makes
-  /// projections of moving vertices cheaper (the result is the same closest point).
+  /// projections of moving vertices cheaper (the result is the same closest point). With any
+  /// other hint, the closest point when it is closer to p than the hint, else the hint.
   /// @{
   Point_3 project_on_surface(const Point_3& p, const Point_3& hint) const { return internal::closest_point(faces_, p, hint); }
   Point_3 project_on_features(const Point_3& p, const Point_3& hint) const
