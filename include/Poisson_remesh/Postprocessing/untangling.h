@@ -63,16 +63,30 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   };
   internal::Face_box_grid<Mesh> grid(faces(m), box_of);
   auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) grid.update(f, box_of(f)); };
+  // (the pairs that involve a face of fs are those of a face of fs and a face whose box meets its
+  // box, by CGAL's rule for a pair (internal/self_intersections.h): tested pair by pair, not by a
+  // search of every pair among the faces near fs, most of which do not involve fs; a face of zero
+  // area is the pair (f, f) and in no other, as in that search)
   std::vector<face_descriptor> near;
-  auto crossings = [&](const std::vector<face_descriptor>& fs) {
+  auto flat = [&](face_descriptor f) {
+    const auto h = halfedge(f, m);
+    return CGAL::collinear(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
+  };
+  auto crossings = [&](const std::vector<face_descriptor>& fs) {   // (fs sorted)
     refresh(fs);
-    near = fs;
-    for(face_descriptor f : fs) grid.overlapping(grid.box(f), near);
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
     std::size_t n = 0;
-    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs(m, near))
-      if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
+    for(face_descriptor f : fs) {
+      if(flat(f)) { ++n; continue; }
+      near.clear();
+      grid.overlapping(grid.box(f), near);
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+      for(face_descriptor g : near) {
+        // (a pair of two faces of fs counted once, from its smaller face)
+        if(g == f || (g < f && std::binary_search(fs.begin(), fs.end(), g)) || flat(g)) continue;
+        if(Poisson_remesh::internal::self_intersection_detail::faces_intersect(f, g, m, vpm)) ++n;
+      }
+    }
     return n;
   };
   // the crossing pairs once the faces of `changed` moved or were flipped: those of the other faces
@@ -85,7 +99,9 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     if(changed.empty()) return;
     auto is_changed = [&](face_descriptor f) { return std::binary_search(changed.begin(), changed.end(), f); };
     pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& fp) { return is_changed(fp.first) || is_changed(fp.second); }), pairs.end());
-    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(m, changed))
+    // (every face's box in the grid is current here: the faces near the changed ones come from it)
+    auto near_faces = [&](const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) { grid.overlapping(b, out); };
+    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(m, changed, near_faces))
       if(is_changed(fp.first) || is_changed(fp.second)) pairs.push_back(fp);
     std::sort(pairs.begin(), pairs.end());
     changed.clear();
@@ -202,14 +218,16 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     // (at most 64 trials per pass: a large input folded in many places would spend its time there)
     std::size_t trials = 0;
     const std::size_t max_trials = 64;
-    // the crossings of the faces around the vertices `around` (in m, or in a copy of it)
-    auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around) {
+    // the crossings of the faces around the vertices `around` (in m, or in a copy of it); the
+    // faces near them in m from the grid (kept current below after each collapse)
+    auto crossings_near = [](const Mesh& g, const std::vector<vertex_descriptor>& around, const auto& near_faces) {
       const auto fs = Poisson_remesh::internal::faces_around(g, around);
       std::size_t n = 0;
-      for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(g, fs))
+      for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(g, fs, near_faces))
         if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
       return n;
     };
+    auto near_in_m = [&](const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) { grid.overlapping(b, out); };
     // copies into `copy` the faces whose boxes meet the box of the stars of h's ends -- every face
     // that a triangle around the vertex h collapses into can meet, each with its neighbours there,
     // so that the crossings counted around it are those of a whole copy -- or the whole mesh when
@@ -253,7 +271,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         if(gone.count(y) || ctx.constraint(y, m, is_feature, is_fixed) != 0 || !CGAL::Euler::does_satisfy_link_condition(edge(h, m), m)) continue;
         std::vector<vertex_descriptor> xy = {x, y};
         std::sort(xy.begin(), xy.end());
-        const std::size_t before = crossings_near(m, xy);
+        const std::size_t before = crossings_near(m, xy, near_in_m);
         if(before == 0 || trials >= max_trials) continue;
         ++trials;
         Mesh copy;
@@ -262,14 +280,20 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         const auto z = CGAL::Euler::collapse_edge(edge(hc, copy), copy);
         put(get(CGAL::vertex_point, copy), z, at);
         if(!(ctx.smallest_angles_around(z, copy, at).first >= collapse_floor)) continue;
-        const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z));
+        const std::size_t after = crossings_near(copy, std::vector<vertex_descriptor>(1, z), Poisson_remesh::internal::All_faces());
         if(after < before && before - after > best_gain) { best_gain = before - after; best_h = h; }
       }
       if(best_h == boost::graph_traits<Mesh>::null_halfedge()) continue;
       const vertex_descriptor y = source(best_h, m);
       const Point_3 at = get(vpm, y);
+      const std::vector<face_descriptor> were = Poisson_remesh::internal::faces_around(m, std::array<vertex_descriptor, 2>{{x, y}});
       const vertex_descriptor z = CGAL::Euler::collapse_edge(edge(best_h, m), m);
       put(vpm, z, at);
+      // (the grid: the two faces gone removed, those around z filed where they are now)
+      const std::vector<face_descriptor> now = Poisson_remesh::internal::faces_around(m, std::array<vertex_descriptor, 1>{{z}});
+      for(face_descriptor f : were)
+        if(!std::binary_search(now.begin(), now.end(), f)) grid.remove(f);
+      refresh(now);
       gone.insert(z == x ? y : x);
       ++done;
       ++*collapses;
