@@ -63,6 +63,8 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   };
   internal::Face_box_grid<Mesh> grid(faces(m), box_of);
   auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) grid.update(f, box_of(f)); };
+  // (intersecting_pairs_near's near faces, where every face's box in the grid is current)
+  auto near_in_grid = [&](const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) { grid.overlapping(b, out); };
   // (the pairs that involve a face of fs are those of a face of fs and a face whose box meets its
   // box, by CGAL's rule for a pair (internal/self_intersections.h): tested pair by pair, not by a
   // search of every pair among the faces near fs, most of which do not involve fs; a face of zero
@@ -99,9 +101,8 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
     if(changed.empty()) return;
     auto is_changed = [&](face_descriptor f) { return std::binary_search(changed.begin(), changed.end(), f); };
     pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const auto& fp) { return is_changed(fp.first) || is_changed(fp.second); }), pairs.end());
-    // (every face's box in the grid is current here: the faces near the changed ones come from it)
-    auto near_faces = [&](const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) { grid.overlapping(b, out); };
-    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(m, changed, near_faces))
+    // (every face's box in the grid is current here)
+    for(const auto& fp : Poisson_remesh::internal::intersecting_pairs_near(m, changed, near_in_grid))
       if(is_changed(fp.first) || is_changed(fp.second)) pairs.push_back(fp);
     std::sort(pairs.begin(), pairs.end());
     changed.clear();
@@ -227,7 +228,6 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         if(std::binary_search(fs.begin(), fs.end(), fp.first) || std::binary_search(fs.begin(), fs.end(), fp.second)) ++n;
       return n;
     };
-    auto near_in_m = [&](const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) { grid.overlapping(b, out); };
     // copies into `copy` the faces whose boxes meet the box of the stars of h's ends -- every face
     // that a triangle around the vertex h collapses into can meet, each with its neighbours there,
     // so that the crossings counted around it are those of a whole copy -- or the whole mesh when
@@ -271,7 +271,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
         if(gone.count(y) || ctx.constraint(y, m, is_feature, is_fixed) != 0 || !CGAL::Euler::does_satisfy_link_condition(edge(h, m), m)) continue;
         std::vector<vertex_descriptor> xy = {x, y};
         std::sort(xy.begin(), xy.end());
-        const std::size_t before = crossings_near(m, xy, near_in_m);
+        const std::size_t before = crossings_near(m, xy, near_in_grid);
         if(before == 0 || trials >= max_trials) continue;
         ++trials;
         Mesh copy;

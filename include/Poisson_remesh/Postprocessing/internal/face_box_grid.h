@@ -8,8 +8,8 @@
 #ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
 #define POISSON_REMESH_POSTPROCESSING_INTERNAL_FACE_BOX_GRID_H
 
+#include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <CGAL/Bbox_3.h>
-#include <CGAL/boost/graph/iterator.h>
 #include <boost/graph/graph_traits.hpp>
 
 #include <algorithm>
@@ -166,13 +166,13 @@ public:
   void begin(const std::vector<vertex_descriptor>& region)
   {
     region_ = region;
-    filed_ = faces_around(region_);
+    filed_ = Poisson_remesh::internal::faces_around(m_, region_);
   }
 
   /// the region's changes are over: its faces filed as they are now
   void end()
   {
-    const std::vector<face_descriptor> now = faces_around(region_);
+    const std::vector<face_descriptor> now = Poisson_remesh::internal::faces_around(m_, region_);
     for(face_descriptor f : filed_)
       if(!std::binary_search(now.begin(), now.end(), f)) grid_.remove(f);
     for(face_descriptor f : now) grid_.update(f, box_of_(f));
@@ -189,23 +189,11 @@ public:
     out.erase(std::remove_if(out.begin() + std::ptrdiff_t(first), out.end(),
                              [&](face_descriptor f) { return std::binary_search(filed_.begin(), filed_.end(), f); }),
               out.end());
-    const std::vector<face_descriptor> now = faces_around(region_);
+    const std::vector<face_descriptor> now = Poisson_remesh::internal::faces_around(m_, region_);
     out.insert(out.end(), now.begin(), now.end());
   }
 
 private:
-  // the faces around the vertices of vs, sorted, each once
-  std::vector<face_descriptor> faces_around(const std::vector<vertex_descriptor>& vs) const
-  {
-    std::vector<face_descriptor> out;
-    for(vertex_descriptor v : vs)
-      for(auto h : CGAL::halfedges_around_target(halfedge(v, m_), m_))
-        if(!is_border(h, m_)) out.push_back(face(h, m_));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
-
   const Mesh& m_;
   BoxOf box_of_;
   Face_box_grid<Mesh> grid_;

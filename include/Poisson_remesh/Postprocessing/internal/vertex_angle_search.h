@@ -272,7 +272,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
         u = u / std::sqrt(CGAL::to_double(u.squared_length()));
         const Vector_3 w = CGAL::cross_product(nn, u);
-        // (eight directions in the tangent plane, 45 degrees apart: their cosines and sines once)
+        // (8 directions in the tangent plane, 45 degrees apart: their cosines and sines once)
         static const std::array<std::array<double, 2>, 8> compass = [] {
           std::array<std::array<double, 2>, 8> cs{};
           for(int k = 0; k < 8; ++k) cs[std::size_t(k)] = {std::cos(k * CGAL_PI / 4), std::sin(k * CGAL_PI / 4)};
@@ -294,7 +294,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       // gain (most often: it would lower the least angle under the floor), along the bisector of
       // it and the least triangle's gradient (an ascent direction of both), the step size halved
       // while neither gains; it stops where the sum has no gradient. A compass poll of the
-      // tangent plane pays eight trials for each halving, most of them in directions that lose;
+      // tangent plane pays 8 trials for each halving, most of them in directions that lose;
       // this pays one or two, and a gradient where the vertex moved.
       Vector_3 d[2];
       bool current = false;   // (d holds the directions at p)
