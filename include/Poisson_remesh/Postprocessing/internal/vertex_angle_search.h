@@ -62,16 +62,28 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
     const double area2 = std::sqrt(CGAL::to_double(CGAL::cross_product(ea, ab).squared_length()));
     const double la = CGAL::to_double(ea.squared_length()), lb = CGAL::to_double(eb.squared_length());
     if(!(area2 > 0 && la > 0 && lb > 0)) continue;
-    const double xa = t.sa * Poisson_remesh::internal::vector_angle(area2, CGAL::to_double(ea * ab));
-    const double xb = t.sb * Poisson_remesh::internal::vector_angle(area2, -CGAL::to_double(eb * ab));
-    const double xq = Poisson_remesh::internal::vector_angle(area2, CGAL::to_double((t.a - q) * (t.b - q)));
+    // the smallest (scaled) corner: with unit scales it lies opposite the shortest edge (the
+    // angle at a faces qb, at b faces qa, at q faces ab), and only its angle is computed; where
+    // two of those lengths are within a relative 1e-9 -- angles that close may compare either way
+    // once rounded -- all three angles are compared as with tip scales, for the same choice
+    const double lab = CGAL::to_double(ab.squared_length());
+    int corner;   // (0: a, 1: b, 2: q)
+    double x;
+    auto angle_a = [&] { return t.sa * Poisson_remesh::internal::vector_angle(area2, CGAL::to_double(ea * ab)); };
+    auto angle_b = [&] { return t.sb * Poisson_remesh::internal::vector_angle(area2, -CGAL::to_double(eb * ab)); };
+    auto angle_q = [&] { return Poisson_remesh::internal::vector_angle(area2, CGAL::to_double((t.a - q) * (t.b - q))); };
+    auto apart = [](double u, double w) { return std::abs(u - w) > 1e-9 * (std::max)(u, w); };
+    if(t.sa == 1 && t.sb == 1 && apart(la, lb) && apart(la, lab) && apart(lb, lab)) {
+      corner = lb < la && lb < lab ? 0 : la < lab ? 1 : 2;
+      x = corner == 0 ? angle_a() : corner == 1 ? angle_b() : angle_q();
+    } else {
+      const double xa = angle_a(), xb = angle_b(), xq = angle_q();
+      corner = xa <= xb && xa <= xq ? 0 : xb <= xq ? 1 : 2;
+      x = corner == 0 ? xa : corner == 1 ? xb : xq;
+    }
     const Vector_3 ga = (CGAL::to_double(ab * ea) / la * ea - ab) / area2;
     const Vector_3 gb = (ab - CGAL::to_double(ab * eb) / lb * eb) / area2;
-    Vector_3 g;
-    double x;
-    if(xa <= xb && xa <= xq) { g = t.sa * ga; x = xa; }
-    else if(xb <= xq) { g = t.sb * gb; x = xb; }
-    else { g = -(ga + gb); x = xq; }
+    const Vector_3 g = corner == 0 ? t.sa * ga : corner == 1 ? t.sb * gb : -(ga + gb);
     g_sum = g_sum + g;
     terms += std::sqrt(CGAL::to_double(g.squared_length()));
     if(x < least) { least = x; g_least = g; }
