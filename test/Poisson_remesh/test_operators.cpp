@@ -444,6 +444,55 @@ TEST_CASE("angle optimization and smoothing: a free vertex pushed off its place 
   }
 }
 
+TEST_CASE("angle optimization: a move does not take an edge of the moving vertex farther than the tolerance from the input", "[operators][angles][fidelity]")
+{
+  // a coarse sphere's vertices pushed off their places along the input (a finer sphere), which
+  // leaves triangles under 30 degrees: the searches move them, each trial point judged by the
+  // smallest angle around it; an edge of the moving vertex may not end farther from the input
+  // than the tolerance unless it was already (then no farther than it was). With a tolerance of 0
+  // (the check off) the same searches stretch edges past it
+  const Mesh in = analytic::sphere(96, 48).to_mesh<Mesh>();
+  const auto features = PR::detect_features(in);
+  const Context context(in, features);
+  CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> tree(faces(in).first, faces(in).second, in);
+  Mesh start = analytic::sphere(24, 12).to_mesh<Mesh>();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> push(-0.05, 0.05);
+  for(V v : vertices(start)) {
+    const Point p = start.point(v);
+    const double dx = push(rng), dy = push(rng), dz = push(rng);
+    start.point(v) = tree.closest_point(Point(p.x() + dx, p.y() + dy, p.z() + dz));
+  }
+  const double tolerance = 0.008, reach = tolerance * context.diagonal();
+  auto midpoint_distances = [&](const Mesh& m) {
+    std::vector<double> d;
+    for(auto e : edges(m)) d.push_back(std::sqrt(tree.squared_distance(CGAL::midpoint(m.point(source(e, m)), m.point(target(e, m))))));
+    return d;
+  };
+  const std::vector<double> before = midpoint_distances(start);
+  const double worst = min_angle(start);
+  REQUIRE(worst < 30);
+  // (the largest excess of an edge over the tolerance, beyond what it had before)
+  auto stretched = [&](double max_deviation, std::size_t& moved, double& smallest) {
+    Mesh m = start;
+    PR::Relaxation_statistics stats;
+    moved = 0;
+    for(int round = 0; round < 4; ++round)
+      moved += P::optimize_angles(context, m, no_feature, [](V) { return false; }, P::Angle_optimization_settings(), 30, max_deviation, stats);
+    smallest = min_angle(m);
+    const std::vector<double> after = midpoint_distances(m);
+    double excess = 0;
+    for(std::size_t i = 0; i < after.size(); ++i) excess = std::max(excess, after[i] - std::max(before[i], reach));
+    return excess;
+  };
+  std::size_t moved_with = 0, moved_without = 0;
+  double smallest_with = 0, smallest_without = 0;
+  CHECK(stretched(tolerance, moved_with, smallest_with) <= 1e-12);
+  CHECK(moved_with > 100);
+  CHECK(smallest_with >= worst);
+  CHECK(stretched(0, moved_without, smallest_without) > 0.1 * reach);   // (the check off)
+}
+
 TEST_CASE("angle smoothing: a free vertex climbs the gradient of its ring's smallest angles", "[operators][angles]")
 {
   // the directions of the smoothing's gradient steps against central differences of the

@@ -8,7 +8,11 @@
 // all reach 30 degrees, the neighbours raise their own angles instead of the tip's. The vertices of
 // the fidelity insertions at a sliver may move too, by a quarter of the tolerance at most
 // (optimize_pinned_vertices). Constraints: vertices on the input; moves only; a move that makes the
-// mesh cut itself anew is taken back.
+// mesh cut itself anew is taken back; with a fidelity tolerance (`max_deviation` > 0), a trial
+// point wins only if each edge of the moving vertex ends within the tolerance of the input (its
+// midpoint), or no farther than it was: these moves follow the last fidelity insertions, and an
+// edge stretched across a groove or around a bend would undo them (a move taken back for a
+// crossing is not checked again: its neighbours' edges were checked with the vertex moved).
 
 #ifndef POISSON_REMESH_POSTPROCESSING_ANGLE_OPTIMIZATION_H
 #define POISSON_REMESH_POSTPROCESSING_ANGLE_OPTIMIZATION_H

@@ -112,7 +112,10 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
 /// only the vertices of the fidelity insertions (fixed for is_corner) at a triangle sharper than
 /// `sliver_angle` move, by a quarter of the fidelity tolerance (`max_deviation` times the diagonal)
 /// at most from where they were put, `pin_position(x)` (nullptr for the others): they still hold the
-/// mesh near the input. A move that makes the mesh cut itself anew is taken back. With `unmoved`
+/// mesh near the input. With Angle_goal::smallest and `max_deviation` > 0, a trial point wins only
+/// if each edge of the moving vertex stays within `max_deviation` times the diagonal of the input
+/// (at its midpoint), or no farther than it was. A move that makes the mesh cut itself anew is
+/// taken back. With `unmoved`
 /// (not null), the digest of each vertex's star -- its point, its ring's points, border and
 /// feature flags and tip scales, its movability -- is kept when its search moves nothing, and a
 /// vertex whose star has the same digest at the next call is not searched again: its search
@@ -253,6 +256,28 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     };
     double best = objective(p);
     if(best < 0) return start;
+    // (Angle_goal::smallest with a tolerance) a trial point wins only if each of v's edges stays
+    // within the tolerance of the input, or no farther than it was: the angle moves come after
+    // the fidelity insertions, and a move that stretches an edge across a groove or around a
+    // bend would undo them (each edge's midpoint measured; the limits read at the first winner)
+    const double edge_reach = !smoothing && max_deviation > 0 ? max_deviation * ctx.diagonal() : 0;
+    thread_local std::vector<std::pair<Point_3, double>> edge_limits;   // (each neighbour, and its edge's largest squared distance)
+    edge_limits.clear();
+    auto keeps_edges_near = [&](const Point_3& q) {
+      if(!(edge_reach > 0)) return true;
+      auto squared_distance_of_midpoint = [&](const Point_3& a, const Point_3& x) {
+        const Point_3 mid = CGAL::midpoint(a, x);
+        return CGAL::to_double(CGAL::squared_distance(mid, ctx.project_on_surface(mid, a)));
+      };
+      if(edge_limits.empty())
+        for(auto h : CGAL::halfedges_around_target(v, m)) {
+          const Point_3& a = get(vpm, source(h, m));
+          edge_limits.push_back({a, (std::max)(squared_distance_of_midpoint(a, start), edge_reach * edge_reach)});
+        }
+      for(const auto& [a, limit] : edge_limits)
+        if(squared_distance_of_midpoint(a, q) > limit) return false;
+      return true;
+    };
     // directions: the tangent plane (8 of them; the smoothing climbs the gradient there instead),
     // or along the feature curve (2)
     std::vector<Vector_3> dirs;
@@ -349,7 +374,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
             --trials;
           }
           const double a = objective(q, best_here + 1e-9);
-          if(a > best_here + 1e-9) {
+          if(a > best_here + 1e-9 && keeps_edges_near(q)) {
             best_here = a;
             best_q = q;
             if(smoothing && a > best + 1e-6) { first = i; break; }
