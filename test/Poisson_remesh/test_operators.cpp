@@ -450,7 +450,8 @@ TEST_CASE("angle optimization: a move does not take an edge of the moving vertex
   // leaves triangles under 30 degrees: the searches move them, each trial point judged by the
   // smallest angle around it; an edge of the moving vertex may not end farther from the input
   // than the tolerance unless it was already (then no farther than it was). With a tolerance of 0
-  // (the check off) the same searches stretch edges past it
+  // (the check off) the same searches stretch edges past it. (A tolerance of 0.4% of the diagonal:
+  // some edges start beyond it, and stay no farther than they were.)
   const Mesh in = analytic::sphere(96, 48).to_mesh<Mesh>();
   const auto features = PR::detect_features(in);
   const Context context(in, features);
@@ -463,7 +464,7 @@ TEST_CASE("angle optimization: a move does not take an edge of the moving vertex
     const double dx = push(rng), dy = push(rng), dz = push(rng);
     start.point(v) = tree.closest_point(Point(p.x() + dx, p.y() + dy, p.z() + dz));
   }
-  const double tolerance = 0.008, reach = tolerance * context.diagonal();
+  const double tolerance = 0.004, reach = tolerance * context.diagonal();
   auto midpoint_distances = [&](const Mesh& m) {
     std::vector<double> d;
     for(auto e : edges(m)) d.push_back(std::sqrt(tree.squared_distance(CGAL::midpoint(m.point(source(e, m)), m.point(target(e, m))))));
@@ -472,6 +473,7 @@ TEST_CASE("angle optimization: a move does not take an edge of the moving vertex
   const std::vector<double> before = midpoint_distances(start);
   const double worst = min_angle(start);
   REQUIRE(worst < 30);
+  REQUIRE(*std::max_element(before.begin(), before.end()) > reach);
   // (the largest excess of an edge over the tolerance, beyond what it had before)
   auto stretched = [&](double max_deviation, std::size_t& moved, double& smallest) {
     Mesh m = start;

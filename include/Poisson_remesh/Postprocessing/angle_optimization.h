@@ -11,8 +11,8 @@
 // mesh cut itself anew is taken back; with a fidelity tolerance (`max_deviation` > 0), a trial
 // point wins only if each edge of the moving vertex ends within the tolerance of the input (its
 // midpoint), or no farther than it was: these moves follow the last fidelity insertions, and an
-// edge stretched across a groove or around a bend would undo them (a move taken back for a
-// crossing is not checked again: its neighbours' edges were checked with the vertex moved).
+// edge stretched across a groove or around a bend would undo them (not guaranteed where a vertex
+// is taken back for a crossing: its neighbours' moves were checked with it where it had moved).
 
 #ifndef POISSON_REMESH_POSTPROCESSING_ANGLE_OPTIMIZATION_H
 #define POISSON_REMESH_POSTPROCESSING_ANGLE_OPTIMIZATION_H

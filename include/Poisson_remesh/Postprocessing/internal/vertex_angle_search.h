@@ -114,8 +114,8 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
 /// at most from where they were put, `pin_position(x)` (nullptr for the others): they still hold the
 /// mesh near the input. With Angle_goal::smallest and `max_deviation` > 0, a trial point wins only
 /// if each edge of the moving vertex stays within `max_deviation` times the diagonal of the input
-/// (at its midpoint), or no farther than it was. A move that makes the mesh cut itself anew is
-/// taken back. With `unmoved`
+/// (at its midpoint), or no farther than it was (not checked again when a neighbour is taken back
+/// below). A move that makes the mesh cut itself anew is taken back. With `unmoved`
 /// (not null), the digest of each vertex's star -- its point, its ring's points, border and
 /// feature flags and tip scales, its movability -- is kept when its search moves nothing, and a
 /// vertex whose star has the same digest at the next call is not searched again: its search
@@ -259,7 +259,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // (Angle_goal::smallest with a tolerance) a trial point wins only if each of v's edges stays
     // within the tolerance of the input, or no farther than it was: the angle moves come after
     // the fidelity insertions, and a move that stretches an edge across a groove or around a
-    // bend would undo them (each edge's midpoint measured; the limits read at the first winner)
+    // bend would undo them (each edge's midpoint measured; the limits read at the first check)
     const double edge_reach = !smoothing && max_deviation > 0 ? max_deviation * ctx.diagonal() : 0;
     thread_local std::vector<std::pair<Point_3, double>> edge_limits;   // (each neighbour, and its edge's largest squared distance)
     edge_limits.clear();
