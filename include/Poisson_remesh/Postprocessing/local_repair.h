@@ -118,10 +118,7 @@ std::size_t repair_sharp_triangles(const Context& ctx, Mesh& m, IsFeatureEdge is
   // the crossing checks after each step of a trial look for the faces near the region in a grid
   // of the other faces' boxes, not in a scan of every face (most of the repair's time on an input
   // of many parts when it was one scan per step): the same pairs
-  auto box_of = [&](face_descriptor f) {
-    const halfedge_descriptor h = halfedge(f, m);
-    return get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox();
-  };
+  auto box_of = [&](face_descriptor f) { return Poisson_remesh::internal::face_box(f, m); };
   internal::Region_near_faces<Mesh, decltype(box_of)> near_faces(m, box_of);
 
   auto no_pin = [](vertex_descriptor) -> const Point_3* { return nullptr; };

@@ -56,11 +56,7 @@ std::size_t untangle(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, IsCo
   // not); the crossing pairs that involve one of the faces of `fs` (sorted) are looked for among
   // the faces whose boxes meet theirs (intersecting_pairs_near would box the whole mesh each
   // time, and a scan of every face's box for each trial was most of the untangling's time)
-  auto box_of = [&](face_descriptor f) {
-    CGAL::Bbox_3 b;
-    for(vertex_descriptor x : CGAL::vertices_around_face(halfedge(f, m), m)) b += get(vpm, x).bbox();
-    return b;
-  };
+  auto box_of = [&](face_descriptor f) { return Poisson_remesh::internal::face_box(f, m); };
   internal::Face_box_grid<Mesh> grid(faces(m), box_of);
   auto refresh = [&](const std::vector<face_descriptor>& fs) { for(face_descriptor f : fs) grid.update(f, box_of(f)); };
   // (intersecting_pairs_near's near faces, where every face's box in the grid is current)

@@ -40,7 +40,7 @@ struct Ring_triangle { Point_3 a, b; Vector_3 n; double ln, sa, sb; };
 // halves the step size, which starts at a tenth of its mean edge length and ends under a hundredth)
 constexpr int gradient_steps = 16;
 
-// At q (the searching vertex's trial point), the directions in the tangent plane (unit normal nn)
+// At q (the searching vertex's trial point), the directions in the tangent space (unit normal nn)
 // in which the sum of the ring triangles' smallest angles rises fastest (d_sum), and the bisector
 // of it and the direction in which the least of those angles rises fastest (d_both): the unit
 // projections of their gradients. With e = q - a and f = b - a, the angle at a changes as q moves
@@ -107,7 +107,7 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
 /// Angle_goal::smallest, the movable vertices of the triangles sharper than `optimized_angle`
 /// (degrees), to raise the smallest angle around them; with Angle_goal::sum_of_smallest, every
 /// movable vertex, to raise the sum of its triangles' smallest angles without lowering the smallest
-/// (free vertices search in their tangent plane and are projected once: it is a smoothing of
+/// (free vertices search in their tangent space and are projected once: it is a smoothing of
 /// vertices already well placed, with a shorter search). With `pinned_only` (Angle_goal::smallest),
 /// only the vertices of the fidelity insertions (fixed for is_corner) at a triangle sharper than
 /// `sliver_angle` move, by a quarter of the fidelity tolerance (`max_deviation` times the diagonal)
@@ -125,7 +125,7 @@ void ascent_directions(const Ring& ring, const Point_3& q, const Vector_3& nn, V
 /// number of threads (`is_feature` and `is_corner` are then called from several threads). Returns
 /// the number of vertices moved. With `only` (not null; Angle_goal::smallest), the vertices searched
 /// are those of `only`, in its order, at a triangle sharper than `optimized_angle`, the free ones
-/// in their tangent plane, projected once (the local repair's searches). `near_faces`: where the
+/// in their tangent space, projected once (the local repair's searches). `near_faces`: where the
 /// check for new crossings looks for the faces near the moved ones (Relaxation_context.h's
 /// intersecting_pairs_near; by default every face).
 template <class ConcurrencyTag, class Context, class Mesh, class IsFeatureEdge, class IsCorner, class PinPosition,
@@ -278,7 +278,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         if(squared_distance_of_midpoint(a, q) > limit) return false;
       return true;
     };
-    // directions: the tangent plane (8 of them; the smoothing climbs the gradient there instead),
+    // directions: the tangent space (8 of them; the smoothing climbs the gradient there instead),
     // or along the feature curve (2)
     std::vector<Vector_3> dirs;
     double mean = 0;
@@ -299,7 +299,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     // (one feature edge: the vertex may be the loose end of a curve at a tip, it moves little)
     const bool loose_end = c == 1 && dirs.size() == 1;
     if(loose_end) dirs.push_back(-dirs[0]);
-    Vector_3 nn(0, 0, 0);   // (c == 0: the unit normal of the tangent plane)
+    Vector_3 nn(0, 0, 0);   // (c == 0: the unit normal of the tangent space)
     if(c == 0) {
       const double ln = std::sqrt(CGAL::to_double(nv.squared_length()));
       if(!(ln > 0)) return start;
@@ -309,7 +309,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
         if(CGAL::to_double(u.squared_length()) < 0.1) u = CGAL::cross_product(nn, Vector_3(0, 1, 0));
         u = u / std::sqrt(CGAL::to_double(u.squared_length()));
         const Vector_3 w = CGAL::cross_product(nn, u);
-        // (8 directions in the tangent plane, 45 degrees apart: their cosines and sines once)
+        // (8 directions in the tangent space, 45 degrees apart: their cosines and sines once)
         static const std::array<std::array<double, 2>, 8> compass = [] {
           std::array<std::array<double, 2>, 8> cs{};
           for(int k = 0; k < 8; ++k) cs[std::size_t(k)] = {std::cos(k * CGAL_PI / 4), std::sin(k * CGAL_PI / 4)};
@@ -331,7 +331,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       // gain (most often: it would lower the least angle under the floor), along the bisector of
       // it and the least triangle's gradient (an ascent direction of both), the step size halved
       // while neither gains; it stops where the sum has no gradient. A compass poll of the
-      // tangent plane pays 8 trials for each halving, most of them in directions that lose;
+      // tangent space pays 8 trials for each halving, most of them in directions that lose;
       // this pays one or two, and a gradient where the vertex moved.
       Vector_3 d[2];
       bool current = false;   // (d holds the directions at p)

@@ -18,6 +18,7 @@
 #include <Poisson_remesh/internal/vector_angle.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/Bbox_3.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/box_intersection_d.h>
@@ -56,6 +57,15 @@ Face_pairs<Mesh> intersecting_pairs(const Mesh& m) { return intersecting_pairs<C
 // Where intersecting_pairs_near looks for the faces near the changed ones: every face of the mesh.
 struct All_faces {};
 
+// the bounding box of face f of m (of its corners' points)
+template <class Mesh>
+CGAL::Bbox_3 face_box(typename boost::graph_traits<Mesh>::face_descriptor f, const Mesh& m)
+{
+  const auto vpm = get(CGAL::vertex_point, m);
+  const auto h = halfedge(f, m);
+  return get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox();
+}
+
 // the intersecting face pairs (as above) that involve a face of `changed` or a face whose box
 // meets the box of one: all the pairs that can differ from an earlier check when only the faces
 // of `changed` moved or are new. A box search of the changed faces against all faces, then
@@ -70,11 +80,7 @@ Face_pairs<Mesh> intersecting_pairs_near(const Mesh& m, const FaceRange& changed
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, face_descriptor> Box;
-  auto vpm = get(CGAL::vertex_point, m);
-  auto box_of = [&](face_descriptor f) {
-    const auto h = halfedge(f, m);
-    return Box(get(vpm, source(h, m)).bbox() + get(vpm, target(h, m)).bbox() + get(vpm, target(next(h, m), m)).bbox(), f);
-  };
+  auto box_of = [&](face_descriptor f) { return Box(face_box(f, m), f); };
   const auto n = std::size_t(std::distance(std::begin(changed), std::end(changed)));
   if(n == 0) return {};
   if(2 * n > num_faces(m)) return intersecting_pairs<ConcurrencyTag>(m);
