@@ -80,8 +80,52 @@ consecutive_feature_samples(const M& in, const PR::Feature_set<M>& fs, const Sam
   return pairs;
 }
 
+/// The edges of `out` that a flip of §6.1 would still take: an edge inside the surface and on no
+/// feature curve (`feature`: vertex pairs, both ways) whose flip raises the smallest angle of its
+/// two triangles (by more than a margin), makes an edge that is not there yet, leaves both its
+/// ends more than three edges, turns no new triangle's normal more than `beta` degrees from an old
+/// one's and changes the angle between the two normals by at most `gamma` degrees. The
+/// tessellation flips until there is none.
+template <class M>
+std::size_t flippable_edges(const M& out,
+                            const std::set<std::pair<typename boost::graph_traits<M>::vertex_descriptor, typename boost::graph_traits<M>::vertex_descriptor>>& feature,
+                            double beta, double gamma)
+{
+  typedef K::Vector_3 V;
+  auto p = [&](auto v) { return get(CGAL::vertex_point, out, v); };
+  auto angle = [](const V& a, const V& b) {
+    const double c = CGAL::to_double(a * b) / std::sqrt(CGAL::to_double(a.squared_length() * b.squared_length()));
+    return std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / CGAL_PI;
+  };
+  auto smallest = [&](const Point& a, const Point& b, const Point& c) {
+    return std::min({angle(b - a, c - a), angle(a - b, c - b), angle(a - c, b - c)});
+  };
+  const double margin = 1e-4;   // (degrees: only a flip that gains this much counts)
+  std::size_t n = 0;
+  for(auto e : edges(out)) {
+    const auto h = halfedge(e, out);
+    if(CGAL::is_border_edge(h, out)) continue;
+    const auto a = source(h, out), b = target(h, out);
+    if(feature.count({a, b})) continue;
+    const auto c = target(next(h, out), out), d = target(next(opposite(h, out), out), out);
+    if(c == d || halfedge(c, d, out).second || degree(a, out) <= 3 || degree(b, out) <= 3) continue;
+    const double before = std::min(smallest(p(a), p(b), p(c)), smallest(p(b), p(a), p(d)));
+    const double after = std::min(smallest(p(c), p(a), p(d)), smallest(p(d), p(b), p(c)));
+    if(!(after > before + margin)) continue;
+    const V n1 = CGAL::cross_product(p(b) - p(a), p(c) - p(a)), n2 = CGAL::cross_product(p(a) - p(b), p(d) - p(b));
+    const V m1 = CGAL::cross_product(p(a) - p(c), p(d) - p(c)), m2 = CGAL::cross_product(p(b) - p(d), p(c) - p(d));
+    bool guarded = false;
+    for(const V& m : {m1, m2})
+      for(const V& o : {n1, n2}) guarded = guarded || angle(m, o) > beta - margin;
+    guarded = guarded || std::abs(angle(m1, m2) - angle(n1, n2)) > gamma - margin;
+    if(!guarded) ++n;
+  }
+  return n;
+}
+
 struct Figures
 {
+  std::size_t flippable = 0;   ///< edges a flip of §6.1 would still take (flippable_edges)
   std::size_t leftovers = 0, self_intersections = 0, unjoined_feature_pairs = 0, feature_pairs = 0;
   std::size_t corners_kept = 0;   ///< corners (at the sampling scale) found among the output's vertex points
   std::size_t corners = 0;        ///< corners at the sampling scale
@@ -136,16 +180,24 @@ Figures tessellate_and_check(const std::string& name, const M& in, double factor
   }
 
   // consecutive feature samples are joined by an output edge
+  std::set<std::pair<typename boost::graph_traits<M>::vertex_descriptor, typename boost::graph_traits<M>::vertex_descriptor>> feature;
   for(const auto& pr : consecutive_feature_samples(in, fs, samples)) {
     ++fig.feature_pairs;
-    if(!halfedge(r.sample_vertices[pr.first], r.sample_vertices[pr.second], out).second) ++fig.unjoined_feature_pairs;
+    const auto a = r.sample_vertices[pr.first], b = r.sample_vertices[pr.second];
+    if(!halfedge(a, b, out).second) ++fig.unjoined_feature_pairs;
+    feature.insert({a, b});
+    feature.insert({b, a});
   }
+  const PR::Mutual_tessellation_settings settings;
+  fig.flippable = flippable_edges(out, feature, settings.beta, settings.gamma);
+  // (the flips after each removal pass look only where the pass changed the mesh: none is missed)
+  CHECK(fig.flippable == 0);
 
   std::cout << "[tessellation] " << name << " x" << factor << ": V in " << num_vertices(in) << ", samples "
             << samples.size() << ", V out " << num_vertices(out) << ", leftovers " << fig.leftovers
             << ", chi " << qin.euler_characteristic << " -> " << q.euler_characteristic
             << ", self-intersecting pairs " << fig.self_intersections << ", flips " << r.number_of_flips << " (+" << r.number_of_repair_flips << " repair)"
-            << ", passes " << r.number_of_removal_passes << " (refused: star " << r.refused_star << ", feature edge "
+            << ", flippable left " << fig.flippable << ", passes " << r.number_of_removal_passes << " (refused: star " << r.refused_star << ", feature edge "
             << r.refused_feature_edge << ", pocket " << r.refused_pocket << ", triangulation " << r.refused_triangulation << ")" << ", feature pairs joined "
             << (fig.feature_pairs - fig.unjoined_feature_pairs) << "/" << fig.feature_pairs
             << "; min angle " << q.min_angle << ", mean min angle " << q.mean_min_angle

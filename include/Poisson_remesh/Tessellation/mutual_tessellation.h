@@ -331,13 +331,13 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
     }
     const bool progress = left.size() < originals.size();
     originals.swap(left);
-    const std::size_t flipped = T.flip_edges();
+    const std::size_t flipped = T.flip_changed_edges();
     if(!progress && flipped == 0) {
       if(T.last_resort || settings.max_removal_normal_deviation_last_resort <= settings.max_removal_normal_deviation) break;
       T.last_resort = true;
     }
   }
-  T.flip_edges();
+  T.flip_changed_edges();
   result.number_of_flips = T.flips;
   if(settings.repair_self_intersections) {
     result.number_of_repair_flips = T.template repair_self_intersections<ConcurrencyTag>();
@@ -360,7 +360,7 @@ void remove_original_vertices(Tess& T, const Settings& settings, Result& result)
     }
     originals.swap(left);
     if(result.number_of_collapsed_vertices > 0) {
-      T.flip_edges();
+      T.flip_changed_edges();
       result.number_of_flips = T.flips;
       if(settings.repair_self_intersections) result.number_of_repair_flips += T.template repair_self_intersections<ConcurrencyTag>();
     }

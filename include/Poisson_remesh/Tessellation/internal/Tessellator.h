@@ -88,12 +88,14 @@ public:
   typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<long>>::type Origin_map;
   typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_edge_property_t<bool>>::type Feature_map;
   typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<std::size_t>>::type Owner_map;
+  typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<std::size_t>>::type Changed_map;
 
   Tessellator(TriangleMesh& tm, VPM vpm, const Settings& s)
     : tm(tm), vpm(vpm), settings(s),
       origin(get(CGAL::dynamic_vertex_property_t<long>(), tm)),
       feature(get(CGAL::dynamic_edge_property_t<bool>(), tm)),
-      owner(get(CGAL::dynamic_face_property_t<std::size_t>(), tm))
+      owner(get(CGAL::dynamic_face_property_t<std::size_t>(), tm)),
+      changed(get(CGAL::dynamic_vertex_property_t<std::size_t>(), tm))
   {}
 
   TriangleMesh& tm;
@@ -105,6 +107,28 @@ public:
   std::size_t flips = 0;
   bool last_resort = false;   // removal guard raised (see the settings)
   std::array<std::size_t, 4> refusals = {{0, 0, 0, 0}};   // star, feature edge, pocket, triangulation
+  // The vertices whose edges may have become flippable since the flips last ran: those whose ring,
+  // degree or edges' feature marks a removal, collapse or repair flip changed (a list, and each
+  // one's place in it plus one, 0 when not in it; a vertex about to be removed is struck off). An
+  // edge elsewhere has kept its two triangles, its ends' degrees, the edge its flip would make and
+  // its mark since the flips left it, so that try_flip would turn it down again:
+  // flip_changed_edges() looks at these vertices' edges only, where a sweep over the whole mesh
+  // after each removal pass looked at every edge (most of the tessellation's flip time).
+  Changed_map changed;
+  std::vector<vertex_descriptor> changed_list;
+  void touch(vertex_descriptor x)
+  {
+    if(get(changed, x) != 0) return;
+    changed_list.push_back(x);
+    put(changed, x, changed_list.size());
+  }
+  void forget(vertex_descriptor x)   // (before x is removed)
+  {
+    const std::size_t i = get(changed, x);
+    if(i == 0) return;
+    changed_list[i - 1] = GT::null_vertex();
+    put(changed, x, 0);
+  }
 
   bool is_sample(vertex_descriptor v) const { return get(origin, v) >= 0; }
   Vec3 xyz(vertex_descriptor v) const
@@ -155,10 +179,34 @@ public:
   /// of the two triangles lexicographically, so this ends; a cap guards against round-off).
   std::size_t flip_edges()
   {
-    const std::size_t before = flips;
     std::deque<halfedge_descriptor> queue;
     for(edge_descriptor e : edges(tm)) queue.push_back(halfedge(e, tm));
-    const std::size_t cap = 50 * queue.size() + 1000;
+    for(vertex_descriptor x : changed_list) if(x != GT::null_vertex()) put(changed, x, 0);   // (all looked at)
+    changed_list.clear();
+    return flip_from(std::move(queue), num_edges(tm));
+  }
+
+  /// the same, starting from the edges around the changed vertices only (see `changed`), each
+  /// once, in the order the vertices changed
+  std::size_t flip_changed_edges()
+  {
+    std::deque<halfedge_descriptor> queue;
+    std::vector<vertex_descriptor> live;
+    for(vertex_descriptor x : changed_list) if(x != GT::null_vertex()) live.push_back(x);
+    changed_list.clear();
+    for(vertex_descriptor x : live) {
+      put(changed, x, 0);
+      // (an edge to a changed vertex not yet visited is taken from that one)
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(x, tm))
+        if(get(changed, source(h, tm)) == 0) queue.push_back(h);
+    }
+    return flip_from(std::move(queue), num_edges(tm));
+  }
+
+  std::size_t flip_from(std::deque<halfedge_descriptor> queue, std::size_t edge_count)
+  {
+    const std::size_t before = flips;
+    const std::size_t cap = 50 * edge_count + 1000;
     std::size_t done = 0;
     while(!queue.empty() && done < cap) {
       const halfedge_descriptor h = queue.front();
@@ -365,9 +413,13 @@ public:
           if(is_feature(h)) marked.push_back({source(h, tm) == v ? keep : source(h, tm), target(h, tm) == v ? keep : target(h, tm)});
       const Point_3 kp = get(vpm, keep);
       const long korigin = get(origin, keep);
+      const vertex_descriptor gone = source(halfedge(edge(hv.first, tm), tm), tm);   // (collapse_edge keeps the target)
+      forget(gone);
       const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(hv.first, tm), tm);
       put(vpm, kept, kp);
       put(origin, kept, korigin);
+      for(vertex_descriptor x : side.polygon) if(x != gone) touch(x);
+      touch(kept);
       for(halfedge_descriptor h : CGAL::halfedges_around_source(kept, tm)) put(feature, edge(h, tm), false);
       for(const auto& pr : marked) {
         const vertex_descriptor x = pr.first == keep ? kept : pr.first, y = pr.second == keep ? kept : pr.second;
@@ -419,6 +471,7 @@ public:
     if(strip) return collapse_onto_border_neighbour(v, side);
     std::vector<Tri> tris;
     if(!triangulate_side(v, side, tris)) { ++refusals[3]; return false; }
+    forget(v);
     for(face_descriptor f : star) CGAL::Euler::remove_face(halfedge(f, tm), tm);   // v goes with its last face
     // add the triangles next to the mesh first, so that each addition is at the border
     std::vector<bool> added(tris.size(), false);
@@ -445,6 +498,7 @@ public:
       if(!progress) throw std::logic_error("mutual_tessellation: a border hole could not be filled");
     }
     put(feature, edge(halfedge(fa, fb, tm).first, tm), true);
+    for(vertex_descriptor x : side.polygon) touch(x);
     return true;
   }
 
@@ -550,7 +604,9 @@ public:
     diagonals.erase(std::unique(diagonals.begin(), diagonals.end()), diagonals.end());
 
     // apply: merge the star into one face, then split it along the new edges
+    forget(v);
     const halfedge_descriptor hm = CGAL::Euler::remove_center_vertex(halfedge(v, tm), tm);
+    for(vertex_descriptor x : ring) touch(x);
     std::vector<face_descriptor> hole_faces{face(hm, tm)};
     for(const auto& dg : diagonals) {
       bool done = false;
@@ -590,7 +646,9 @@ public:
         if(is_feature(h) && !is_border_edge(h, tm)) { only = h; ++n; }
       if(n != 1) return;
       put(feature, edge(only, tm), false);
+      touch(x);
       x = target(only, tm);
+      touch(x);
     }
   }
 
@@ -646,7 +704,11 @@ public:
       if(is_feature(h) && target(h, tm) != v) marked.push_back({w, target(h, tm)});
     const Point_3 pw = get(vpm, w);
     const long ow = get(origin, w);
+    std::vector<vertex_descriptor> ring;
+    for(halfedge_descriptor h : CGAL::halfedges_around_target(v, tm)) ring.push_back(source(h, tm));
+    forget(v);
     const vertex_descriptor kept = CGAL::Euler::collapse_edge(edge(best, tm), tm);   // keeps target(best) = w
+    for(vertex_descriptor x : ring) touch(x);
     put(vpm, kept, pw);
     put(origin, kept, ow);
     for(halfedge_descriptor h : CGAL::halfedges_around_source(kept, tm)) put(feature, edge(h, tm), false);
@@ -747,6 +809,7 @@ public:
           const std::size_t new_x = count_crossings(c, a, d, others) + count_crossings(d, b, c, others);
           if(new_x >= old_x) continue;
           CGAL::Euler::flip_edge(h, tm);
+          for(vertex_descriptor x : {a, b, c, d}) touch(x);
           ++repaired;
           break;   // the face changed: next face
         }
