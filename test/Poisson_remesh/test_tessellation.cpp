@@ -4,12 +4,15 @@
 #include "test_support.h"
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Tessellation/internal/polygon_cdt.h>
 #include <Poisson_remesh/Tessellation/mutual_tessellation.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Polyhedron_items_with_id_3.h>
 #include <CGAL/Surface_mesh.h>
@@ -368,4 +371,73 @@ TEST_CASE("the flips' tangent of the smallest angle turns down only what the ang
   }
   CHECK(nan == 4000);
   CHECK(turned_down > 5000);
+}
+
+TEST_CASE("a star-shaped layout is triangulated directly into CGAL's constrained Delaunay triangles", "[tessellation]")
+{
+  // Layouts as the removal makes them (paper §6.1: a star's ring around the origin, full or half),
+  // with random angles and radii, and some on one circle (cocircular: not unique). The judge is
+  // CGAL's constrained Delaunay triangulation of the polygon, its inside faces told by their
+  // centroids (CGAL::bounded_side_2).
+  typedef CGAL::Exact_predicates_inexact_constructions_kernel K2;
+  typedef CGAL::Constrained_Delaunay_triangulation_2<K2, CGAL::Default, CGAL::Exact_predicates_tag> CDT;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t found = 0, cocircular = 0, tried = 0, regular_tried = 0;
+  std::vector<std::array<std::size_t, 3>> tris;
+  for(int it = 0; it < 20000; ++it) {
+    std::size_t n = 3 + std::size_t(unit(rng) * 10);
+    const bool full = unit(rng) < 0.7, regular = it % 10 == 0;
+    std::vector<std::array<double, 2>> pts;
+    if(regular) {
+      // points with integer coordinates on the circle of radius 5, in angle order (exactly
+      // cocircular): the first, every other one with probability 1/2, at most a quarter turn apart
+      const double circle[12][2] = {{5, 0}, {4, 3}, {3, 4}, {0, 5}, {-3, 4}, {-4, 3}, {-5, 0}, {-4, -3}, {-3, -4}, {0, -5}, {3, -4}, {4, -3}};
+      const std::size_t last = full ? 11 : 6;
+      std::size_t since = 0;
+      for(std::size_t i = 0; i <= last; ++i, ++since)
+        if(i == 0 || i == last || since >= 3 || unit(rng) < 0.5) { pts.push_back({circle[i][0], circle[i][1]}); since = 0; }
+      n = pts.size();
+    } else {
+      // (a half layout's sectors leave room for a half turn: each under it, so star-shaped)
+      std::vector<double> sector(full ? n : n - 1);
+      double total = 0;
+      for(double& a : sector) { a = 0.3 + unit(rng); total += a; }
+      double cum = 0;
+      for(std::size_t i = 0; i < n; ++i) {
+        const double r = 0.3 + 1.4 * unit(rng), theta = (full ? 2 : 1) * CGAL_PI * cum / total;
+        pts.push_back({r * std::cos(theta), r * std::sin(theta)});
+        if(i < sector.size()) cum += sector[i];
+      }
+    }
+    std::vector<K2::Point_2> poly;
+    for(const auto& x : pts) poly.emplace_back(x[0], x[1]);
+    const auto outcome = PR::internal::polygon_cdt(pts, full, tris);
+    (regular ? regular_tried : tried) += 1;
+    if(outcome == PR::internal::Polygon_cdt_outcome::cocircular) { ++cocircular; continue; }
+    if(outcome != PR::internal::Polygon_cdt_outcome::found) continue;
+    if(!regular) ++found;
+    CDT cdt;
+    for(std::size_t i = 0; i < n; ++i) cdt.insert_constraint(poly[i], poly[(i + 1) % n]);
+    std::set<std::array<K2::Point_2, 3>> judge, mine;
+    auto canonical = [](std::array<K2::Point_2, 3> t) {
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      return t;
+    };
+    for(auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+      const std::array<K2::Point_2, 3> t = {f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()};
+      if(CGAL::bounded_side_2(poly.begin(), poly.end(), CGAL::centroid(t[0], t[1], t[2]), K2()) == CGAL::ON_BOUNDED_SIDE) judge.insert(canonical(t));
+    }
+    for(const auto& t : tris) {
+      REQUIRE(CGAL::orientation(poly[t[0]], poly[t[1]], poly[t[2]]) == CGAL::LEFT_TURN);
+      mine.insert(canonical({poly[t[0]], poly[t[1]], poly[t[2]]}));
+    }
+    INFO("layout " << it << ", " << n << " vertices, " << (full ? "full" : "half"));
+    CHECK(mine == judge);
+  }
+  std::cout << "[tessellation] star layouts: " << found << " of " << tried << " triangulated directly, " << cocircular
+            << " cocircular (of " << regular_tried << " on one circle)" << std::endl;
+  // (the direct path serves nearly every layout with random angles; those on one circle are cocircular)
+  CHECK(found >= tried * 95 / 100);
+  CHECK(cocircular >= regular_tried * 8 / 10);
 }
