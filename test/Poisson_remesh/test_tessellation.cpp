@@ -428,6 +428,7 @@ TEST_CASE("a star-shaped layout is triangulated directly into CGAL's constrained
       const std::array<K2::Point_2, 3> t = {f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()};
       if(CGAL::bounded_side_2(poly.begin(), poly.end(), CGAL::centroid(t[0], t[1], t[2]), K2()) == CGAL::ON_BOUNDED_SIDE) judge.insert(canonical(t));
     }
+    CHECK(tris.size() + 2 == n);
     for(const auto& t : tris) {
       REQUIRE(CGAL::orientation(poly[t[0]], poly[t[1]], poly[t[2]]) == CGAL::LEFT_TURN);
       mine.insert(canonical({poly[t[0]], poly[t[1]], poly[t[2]]}));
@@ -440,4 +441,22 @@ TEST_CASE("a star-shaped layout is triangulated directly into CGAL's constrained
   // (the direct path serves nearly every layout with random angles; those on one circle are cocircular)
   CHECK(found >= tried * 95 / 100);
   CHECK(cocircular >= regular_tried * 8 / 10);
+
+  // layouts the direct path must leave to CGAL: not starting on the positive x axis, two vertices
+  // out of angle order, a sector of a half turn or more, and a half layout whose closing side
+  // passes just above the origin with a vertex below it (not simple)
+  std::vector<std::array<double, 2>> ring = {{1, 0}, {0.3, 0.9}, {-0.8, 0.5}, {-0.7, -0.6}, {0.4, -0.9}};
+  auto refused = [&](const std::vector<std::array<double, 2>>& layout, bool full) {
+    return PR::internal::polygon_cdt(layout, full, tris) == PR::internal::Polygon_cdt_outcome::not_found;
+  };
+  CHECK(!refused(ring, true));
+  std::vector<std::array<double, 2>> turned = ring;
+  for(auto& x : turned) x = {0.8 * x[0] - 0.6 * x[1], 0.6 * x[0] + 0.8 * x[1]};
+  CHECK(refused(turned, true));
+  std::vector<std::array<double, 2>> swapped = ring;
+  std::swap(swapped[1], swapped[2]);
+  CHECK(refused(swapped, true));
+  CHECK(refused({{1, 0}, {0.3, 0.9}, {-0.8, 0.5}, {-0.7, 0.1}}, true));   // (the last sector: over a half turn)
+  CHECK(!refused({{1, 0}, {0.5, 1e-13}, {0, 1}, {-1, 1e-13}}, false));
+  CHECK(refused({{1, 0}, {0.5, 1e-14}, {0, 1}, {-1, 1e-13}}, false));   // (0.5, 1e-14) lies below the closing side
 }

@@ -113,8 +113,9 @@ public:
   // one's place in it plus one, 0 when not in it; a vertex about to be removed is struck off). An
   // edge elsewhere has kept its two triangles, its ends' degrees, the edge its flip would make and
   // its mark since the flips left it, so that try_flip would turn it down again:
-  // flip_changed_edges() looks at these vertices' edges only, where a sweep over the whole mesh
-  // after each removal pass looked at every edge (most of the tessellation's flip time).
+  // flip_changed_edges() looks at these vertices' edges only. (Not covered: an edge turned down
+  // because the edge its flip would make existed, and a flip removed that edge since; it needs
+  // two triangles on each side of a thin part, and is flipped when a removal touches its ends.)
   Changed_map changed;
   std::vector<vertex_descriptor> changed_list;
   void touch(vertex_descriptor x)
@@ -228,8 +229,8 @@ public:
   /// triangles (indices into `pts`, counterclockwise) of the polygon pts[0..n-1] by a constrained
   /// Delaunay triangulation with the polygon's sides as constraints, keeping the inside faces;
   /// false when the polygon is not simple (its CDT does not have exactly n - 2 inside faces).
-  /// `full`: the layout of a whole star, else of a half one. With `direct`, a layout star-shaped
-  /// from the origin whose triangulation is unique is triangulated directly (polygon_cdt.h: the
+  /// `full`: the layout of a whole ring, else of a half one. With `direct`, a layout the origin
+  /// sees all of, whose triangulation is unique, is triangulated directly (polygon_cdt.h: the
   /// same triangles, in another order; most of the removals' time saved); the others by CGAL.
   static bool cdt_triangulate(const std::vector<std::array<double, 2>>& pts, bool full, std::vector<Tri>& out, bool direct = true)
   {

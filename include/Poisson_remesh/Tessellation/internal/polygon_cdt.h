@@ -2,14 +2,15 @@
 //
 // The constrained Delaunay triangulation of a small polygon laid out around the origin, found
 // directly (internal): the removal of an original vertex (paper §6.1) triangulates its laid-out
-// star, a polygon of a few vertices around the removed vertex, tens of thousands of times per
+// one-ring, a polygon of a few vertices around the removed vertex, tens of thousands of times per
 // remesh. CGAL's Constrained_Delaunay_triangulation_2 builds a whole triangulation data structure
 // for each (most of the removal's time, much of it allocation); here the triangles come from the
-// edges they stand on, with CGAL's exact predicates and no allocation after the first calls.
+// edges they stand on, with CGAL's exact predicates and no allocation of its own after the first
+// calls.
 //
 // The layout must turn once around the origin, counterclockwise, starting on the positive x axis
-// (a full star), or from angle 0 to a half turn (a half star, closed by the side from its last
-// vertex to its first): it is then star-shaped from the origin, and whether a chord lies inside
+// (a whole ring), or from angle 0 to a half turn (a half ring, closed by the side from its last
+// vertex to its first): the origin then sees all of it, and whether a chord lies inside
 // is told by the vertices on one side of it (is_diagonal below). Each sub-polygon i, i+1, ..., j
 // (closed by the chord from j to i) takes the triangle (i, k, j) whose apex k sees both ends
 // (both new sides are diagonals) and whose circumcircle holds no other such apex: the triangle of
@@ -38,7 +39,7 @@ namespace internal {
 enum class Polygon_cdt_outcome { found, cocircular, not_found };
 
 /// The constrained Delaunay triangulation of the layout pts[0..n-1] (counterclockwise; `full`: a
-/// full star, else a half one), as triangles of indices, each counterclockwise, in `out` (cleared
+/// whole ring, else a half one), as triangles of indices, each counterclockwise, in `out` (cleared
 /// first); see the file's comment for when it is not `found` (then `out` is to be ignored).
 inline Polygon_cdt_outcome polygon_cdt(const std::vector<std::array<double, 2>>& pts, bool full, std::vector<std::array<std::size_t, 3>>& out)
 {
@@ -52,7 +53,7 @@ inline Polygon_cdt_outcome polygon_cdt(const std::vector<std::array<double, 2>>&
   for(const auto& x : pts) p.emplace_back(x[0], x[1]);
   const K::Orientation_2 orientation;
   const K::Side_of_oriented_circle_2 side_of_circle;
-  // The layout is star-shaped from the origin O: each vertex turns left from the one before,
+  // The origin O sees all of the layout: each vertex turns left from the one before,
   // seen from O, starting on the positive x axis, and a full layout turns once around O (above
   // the x axis, then below it) and left again from its last vertex to its first, while a half
   // layout stays above the x axis and ends on its negative side (at a half turn, to rounding).
@@ -71,6 +72,10 @@ inline Polygon_cdt_outcome polygon_cdt(const std::vector<std::array<double, 2>>&
   } else {
     for(std::size_t k = 1; k < n; ++k) if(p[k].y() < 0) return Polygon_cdt_outcome::not_found;
     if(!(p[n - 1].x() < 0 && p[n - 1].y() <= 1e-12 * -p[n - 1].x())) return Polygon_cdt_outcome::not_found;
+    // (the closing side passes by the origin, not through it: every other vertex strictly left
+    // of it, or the polygon is not simple)
+    for(std::size_t k = 1; k + 1 < n; ++k)
+      if(orientation(p[n - 1], p[0], p[k]) != CGAL::LEFT_TURN) return Polygon_cdt_outcome::not_found;
   }
   // Whether the chord from a to b (a < b) is a diagonal (inside the polygon, meeting its boundary
   // at a and b only). Seen from O the chord spans the angles from a to b; where that is under a
