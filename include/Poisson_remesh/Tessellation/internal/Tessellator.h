@@ -115,7 +115,7 @@ public:
   // its mark since the flips left it, so that try_flip would turn it down again:
   // flip_changed_edges() looks at these vertices' edges only. (Not covered: an edge turned down
   // because the edge its flip would make existed, and a flip removed that edge since; it needs
-  // two triangles on each side of a thin part, and is flipped when a removal touches its ends.)
+  // two triangles on each side of a thin sheet, and is flipped when a removal touches its ends.)
   Changed_map changed;
   std::vector<vertex_descriptor> changed_list;
   void touch(vertex_descriptor x)

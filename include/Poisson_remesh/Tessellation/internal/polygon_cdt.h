@@ -56,7 +56,7 @@ inline Polygon_cdt_outcome polygon_cdt(const std::vector<std::array<double, 2>>&
   // The origin O sees all of the layout: each vertex turns left from the one before,
   // seen from O, starting on the positive x axis, and a full layout turns once around O (above
   // the x axis, then below it) and left again from its last vertex to its first, while a half
-  // layout stays above the x axis and ends on its negative side (at a half turn, to rounding).
+  // layout stays above the x axis and ends left of O on it (at a half turn, to rounding).
   // Else the polygon goes to CGAL.
   const Point O(0, 0);
   for(std::size_t k = 0; k + 1 < n; ++k)
