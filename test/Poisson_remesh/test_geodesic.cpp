@@ -7,6 +7,7 @@
 
 #include <Poisson_remesh/Geodesic/Approximate_geodesic_oracle.h>
 #include <Poisson_remesh/Geodesic/Exact_geodesic_oracle.h>
+#include <Poisson_remesh/Geodesic/internal/conic_geometry.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
@@ -18,6 +19,7 @@
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -876,4 +878,84 @@ TEST_CASE("iso-curves of large radius on closed meshes are closed chains of poin
     }
     CHECK(max_err < 1e-9 * diag);
   }
+}
+
+// The conics of adaptive sampling's available boundary in one face (|x - c| = p + a . (x - c),
+// the same gradient a): where two of them meet. Judge: the second conic's level function followed
+// along the first at 20,000 steps a turn, each sign change refined by bisection here.
+TEST_CASE("two conics of one face meet where a fine scan finds them, close pairs of crossings included",
+          "[geodesic][exact][iso][adaptive]")
+{
+  using Poisson_remesh::internal::Vec2;
+  auto conic_point = [](Vec2 c, double p, Vec2 a, double th) {
+    const double ux = std::cos(th), uy = std::sin(th), rho = p / (1. - a.x * ux - a.y * uy);
+    return Vec2{c.x + rho * ux, c.y + rho * uy};
+  };
+  auto level = [](Vec2 c, double p, Vec2 a, Vec2 x) {
+    const double dx = x.x - c.x, dy = x.y - c.y;
+    return std::sqrt(dx * dx + dy * dy) - p - a.x * dx - a.y * dy;
+  };
+  auto scan = [&](Vec2 c1, double p1, Vec2 c2, double p2, Vec2 a) {
+    std::vector<double> roots;
+    const int n = 20000;
+    auto f = [&](double th) { return level(c2, p2, a, conic_point(c1, p1, a, th)); };
+    double t0 = 0., f0 = f(0.);
+    for(int i = 1; i <= n; ++i) {
+      const double t1 = 2. * CGAL_PI * i / n, f1 = f(t1);
+      if((f0 < 0.) != (f1 < 0.)) {
+        double lo = t0, hi = t1;
+        for(int k = 0; k < 60; ++k) {
+          const double mid = 0.5 * (lo + hi);
+          if((f(mid) < 0.) == (f0 < 0.)) lo = mid; else hi = mid;
+        }
+        roots.push_back(0.5 * (lo + hi));
+      }
+      t0 = t1;
+      f0 = f1;
+    }
+    return roots;
+  };
+  auto normalized = [](std::vector<double> v) {
+    for(double& x : v) { x = std::fmod(x, 2. * CGAL_PI); if(x < 0.) x += 2. * CGAL_PI; }
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1., 1.), P(0.05, 1.);
+  std::size_t cases = 0, met = 0, equal = 0;
+  for(int i = 0; i < 20000; ++i) {
+    Vec2 a{U(rng), U(rng)};
+    const double na = std::hypot(a.x, a.y), e = 0.95 * std::abs(U(rng));
+    if(na > 0.) a = Vec2{e * a.x / na, e * a.y / na};
+    const Vec2 c1{U(rng), U(rng)}, c2{U(rng), U(rng)};
+    const double p1 = P(rng), p2 = P(rng);
+    std::vector<double> found;
+    Poisson_remesh::internal::conic_conic_angles(c1, p1, c2, p2, a, found);
+    found = normalized(found);
+    const std::vector<double> judge = scan(c1, p1, c2, p2, a);
+    ++cases;
+    if(!judge.empty()) ++met;
+    for(double th : found)   // on both conics
+      CHECK(std::abs(level(c2, p2, a, conic_point(c1, p1, a, th))) < 1e-9);
+    if(found.size() != judge.size()) continue;   // (a tangency: a double root the scan may miss)
+    bool same = true;
+    for(std::size_t k = 0; k < found.size(); ++k) same = same && std::abs(found[k] - judge[k]) < 1e-9;
+    if(same) ++equal;
+  }
+  CHECK(met > cases / 4);
+  CHECK(double(equal) > 0.999 * double(cases));
+  // a small conic sitting on a large one: two crossings 0.02 radians apart, between two steps of a
+  // scan at 64 steps a turn (the one the extraction used before)
+  const Vec2 a{0.5, 0.2}, c1{0., 0.};
+  const double p1 = 1., th0 = 1.;
+  const Vec2 c2 = conic_point(c1, p1, a, th0);
+  std::vector<double> found;
+  Poisson_remesh::internal::conic_conic_angles(c1, p1, c2, 0.01, a, found);
+  found = normalized(found);
+  const std::vector<double> judge = scan(c1, p1, c2, 0.01, a);
+  REQUIRE(judge.size() == 2);
+  REQUIRE(found.size() == 2);
+  for(int k = 0; k < 2; ++k) CHECK(std::abs(found[k] - judge[k]) < 1e-9);
+  CHECK(judge[1] - judge[0] < 2. * CGAL_PI / 64.);
+  CHECK(std::floor(judge[0] / (2. * CGAL_PI / 64.)) == std::floor(judge[1] / (2. * CGAL_PI / 64.)));
 }

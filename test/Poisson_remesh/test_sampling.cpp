@@ -2,7 +2,9 @@
 #include "analytic_meshes.h"
 #include "test_support.h"
 
+#include <Poisson_remesh/Boundary/Circular_available_boundary.h>
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Geodesic/Iso_arc.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
 #include <Poisson_remesh/read_surface_mesh.h>
 
@@ -19,6 +21,8 @@
 #include <tbb/global_control.h>
 #endif
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -739,4 +743,108 @@ TEST_CASE("samples on a flat square have a blue-noise spectrum", "[sampling][spe
   CHECK(f_peak < 1.4 * f0);
   CHECK(low / low_rings < 0.25);   // white noise would be 1
   CHECK(power[peak] > 1.2);
+}
+
+// Where two conic arcs of one face meet (adaptive density: the same radius gradient), as the
+// available boundary's update cuts them. Judge: b's level function followed along a at 20,000
+// steps a turn, each sign change refined by bisection and kept when the point lies on b's range.
+TEST_CASE("conic arcs of one face cross where a fine scan finds them, entering b's region where its level falls",
+          "[sampling][adaptive][boundary]")
+{
+  typedef PR::Iso_arc<boost::graph_traits<Mesh>::face_descriptor, Point> Arc;
+  struct Scanned { double t; bool entering; };
+  auto point_of = [](const Arc& c, double th) {
+    const double ux = std::cos(th), uy = std::sin(th);
+    const double rho = c.radius / (1. - c.gradient[0] * ux - c.gradient[1] * uy);
+    return std::array<double, 2>{{c.center[0] + rho * ux, c.center[1] + rho * uy}};
+  };
+  auto level_of = [](const Arc& c, const std::array<double, 2>& x) {
+    const double dx = x[0] - c.center[0], dy = x[1] - c.center[1];
+    return std::sqrt(dx * dx + dy * dy) - c.radius - c.gradient[0] * dx - c.gradient[1] * dy;
+  };
+  auto on_range = [](const Arc& c, const std::array<double, 2>& x, double margin) {
+    double d = std::atan2(x[1] - c.center[1], x[0] - c.center[0]) - c.theta_start;
+    d -= 2 * M_PI * std::floor(d / (2 * M_PI));
+    return d <= c.theta_end - c.theta_start - margin ? 1 : (d < c.theta_end - c.theta_start + margin || d > 2 * M_PI - margin ? 0 : -1);
+  };
+  // the crossings of a with b; `clear`: none lies within 1e-7 radians of an end of b's range
+  auto scan = [&](const Arc& a, const Arc& b, bool& clear) {
+    std::vector<Scanned> out;
+    clear = true;
+    const int n = std::max(8, int(20000 * (a.theta_end - a.theta_start) / (2 * M_PI)));
+    auto f = [&](double t) { return level_of(b, point_of(a, a.theta_start + t * (a.theta_end - a.theta_start))); };
+    double t0 = 0, f0 = f(0);
+    for(int i = 1; i <= n; ++i) {
+      const double t1 = double(i) / n, f1 = f(t1);
+      if((f0 < 0) != (f1 < 0)) {
+        double lo = t0, hi = t1;
+        for(int k = 0; k < 60; ++k) {
+          const double mid = 0.5 * (lo + hi);
+          if((f(mid) < 0) == (f0 < 0)) lo = mid; else hi = mid;
+        }
+        const double t = 0.5 * (lo + hi);
+        const int on = on_range(b, point_of(a, a.theta_start + t * (a.theta_end - a.theta_start)), 1e-7);
+        if(on == 0) clear = false;
+        if(on == 1) out.push_back({t, f0 >= 0});
+      }
+      t0 = t1;
+      f0 = f1;
+    }
+    return out;
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1), R(0.05, 1), T(0, 2 * M_PI);
+  auto random_arc = [&](std::array<double, 2> g) {
+    Arc c;
+    c.center = {{U(rng), U(rng)}};
+    c.radius = R(rng);
+    c.gradient = g;
+    c.theta_start = T(rng);
+    c.theta_end = c.theta_start + std::uniform_real_distribution<double>(0.1, 2 * M_PI)(rng);
+    return c;
+  };
+  std::size_t compared = 0, agreed = 0, crossings = 0;
+  for(int i = 0; i < 5000; ++i) {
+    const double e = 0.9 * std::abs(U(rng)), w = T(rng);
+    const std::array<double, 2> g{{e * std::cos(w), e * std::sin(w)}};
+    const Arc a = random_arc(g), b = random_arc(g);
+    std::vector<PR::internal::Arc_crossing> on_a, on_b;
+    PR::internal::arc_crossings(a, b, &on_a, &on_b);
+    bool clear = true;
+    const std::vector<Scanned> judge = scan(a, b, clear);
+    if(!clear) continue;
+    ++compared;
+    crossings += judge.size();
+    std::sort(on_a.begin(), on_a.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
+    bool same = on_a.size() == judge.size();
+    for(std::size_t k = 0; same && k < judge.size(); ++k)
+      same = std::abs(on_a[k].t - judge[k].t) < 1e-9 && on_a[k].entering == judge[k].entering;
+    if(same) ++agreed;
+    CHECK(on_b.size() == on_a.size());   // the same points, seen from b
+  }
+  CHECK(compared > 4000);
+  CHECK(crossings > compared / 5);
+  CHECK(double(agreed) > 0.999 * double(compared));
+  // a small arc's conic sitting on a large arc: two crossings 0.02 radians apart around a's
+  // focus, between two steps of a scan at 64 steps a turn
+  Arc a, b;
+  a.center = {{0, 0}};
+  a.radius = 1;
+  a.gradient = {{0.5, 0.2}};
+  a.theta_start = 0;
+  a.theta_end = 2 * M_PI;
+  b = a;
+  b.center = point_of(a, 1.0);
+  b.radius = 0.01;
+  std::vector<PR::internal::Arc_crossing> on_a;
+  PR::internal::arc_crossings(a, b, &on_a, nullptr);
+  bool clear = true;
+  const std::vector<Scanned> judge = scan(a, b, clear);
+  REQUIRE(judge.size() == 2);
+  REQUIRE(on_a.size() == 2);
+  std::sort(on_a.begin(), on_a.end(), [](const auto& x, const auto& y) { return x.t < y.t; });
+  CHECK(on_a[0].entering);
+  CHECK(!on_a[1].entering);
+  for(int k = 0; k < 2; ++k) CHECK(std::abs(on_a[k].t - judge[k].t) < 1e-9);
+  CHECK(std::floor(judge[0].t * 64) == std::floor(judge[1].t * 64));
 }

@@ -19,6 +19,8 @@
 #ifndef POISSON_REMESH_BOUNDARY_CIRCULAR_AVAILABLE_BOUNDARY_H
 #define POISSON_REMESH_BOUNDARY_CIRCULAR_AVAILABLE_BOUNDARY_H
 
+#include <Poisson_remesh/Geodesic/internal/conic_geometry.h>
+
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
 
@@ -97,12 +99,53 @@ struct Arc_crossing
   bool reliable;
 };
 
-/// The same for conic arcs (adaptive density, §5.1): no closed form worth having (two conics meet
-/// in up to four points, a quartic), so the level function of b is followed along a, sign changes
-/// are bracketed on 64 steps per turn and refined by bisection to 1e-15 of a's parameter.
+/// The same for conic arcs (adaptive density, §5.1) with the same gradient: the arcs of one face,
+/// whose level r0 + r(x) has the face's radius gradient whatever the sample. Their conics meet in
+/// at most two points, found in closed form (Geodesic/internal/conic_geometry.h); each is kept
+/// when it lies on both arcs, and a enters b's region where b's level function decreases along a.
+template <class Arc>
+void same_gradient_conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
+{
+  const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start, tol = 1e-12;
+  if(!(span_a > 0)) return;
+  const Vec2 g{a.gradient[0], a.gradient[1]};
+  thread_local std::vector<double> angles;
+  angles.clear();
+  conic_conic_angles(Vec2{a.center[0], a.center[1]}, a.radius, Vec2{b.center[0], b.center[1]}, b.radius, g, angles);
+  for(const double th : angles) {
+    double da = th - a.theta_start;
+    da -= two_pi * std::floor(da / two_pi);
+    if(da > span_a + tol && da < two_pi - tol) continue;   // not on a
+    const double t = da > span_a + tol ? 0.0 : std::min(1.0, da / span_a);
+    const Vec2 u{std::cos(th), std::sin(th)}, v{-u.y, u.x};
+    const double rho = a.radius / (1. - dot(g, u));
+    const Vec2 p = Vec2{a.center[0], a.center[1]} + rho * u;
+    const Vec2 x = p - Vec2{b.center[0], b.center[1]};
+    double db = std::atan2(x.y, x.x) - b.theta_start;
+    db -= two_pi * std::floor(db / two_pi);
+    if(db > span_b + tol && db < two_pi - tol) continue;   // not on b
+    // a's forward tangent d(rho u)/dtheta, and the gradient of b's level function |x| - g . x - radius
+    const Vec2 tangent = (rho * rho * dot(g, v) / a.radius) * u + rho * v;
+    const double d = norm(x);
+    const Vec2 grad = (d > 0 ? (1. / d) * x : Vec2{0., 0.}) - g;
+    const double slope = dot(tangent, grad), norms = norm(tangent) * norm(grad);
+    const double sine = norms > 0 ? std::abs(slope) / norms : 0;
+    out.push_back({t, slope < 0, sine > 1e-6});   // b's level falls along a: into b's region
+  }
+}
+
+/// The same for arcs of which one at least is a conic, with different gradients (a circle and a
+/// conic, or arcs from an oracle that lays a face out otherwise): no closed form worth having (two
+/// such conics meet in up to four points, a quartic), so the level function of b is followed
+/// along a, sign changes are bracketed on 64 steps per turn and refined by bisection to 1e-15 of
+/// a's parameter.
 template <class Arc>
 void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
 {
+  if(a.gradient == b.gradient && !a.is_segment && !b.is_segment) {
+    same_gradient_conic_arc_crossings(a, b, out);
+    return;
+  }
   const double span = a.theta_end - a.theta_start;
   if(!(span > 0)) return;
   const int n = std::max(8, int(std::ceil(span / (two_pi / 64))));

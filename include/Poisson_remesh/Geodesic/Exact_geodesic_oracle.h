@@ -55,6 +55,7 @@
 
 #include <Poisson_remesh/Geodesic/Iso_arc.h>
 #include <Poisson_remesh/Geodesic/internal/Indexed_triangle_mesh.h>
+#include <Poisson_remesh/Geodesic/internal/conic_geometry.h>
 #include <Poisson_remesh/Geodesic/internal/window_geometry.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -884,54 +885,6 @@ private:
     double at(Vec2 x) const { return internal::dot(a, x) + b; }
   };
 
-  /// conic |x - c| = p + a . (x - c) (|a| < 1, p > 0) and the line through P and Q: the polar
-  /// angles around c of the (at most two) meeting points
-  static void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vector<double>& out)
-  {
-    const Vec2 d = Q - P;
-    const double L = internal::norm(d);
-    if(!(L > 0.)) return;
-    const Vec2 n{-d.y / L, d.x / L};
-    // rho n.u = k on the line, rho (1 - a.u) = p on the conic: (p n + k a) . u = k
-    const double k = internal::dot(n, P - c);
-    const Vec2 w = p * n + k * a;
-    const double W = internal::norm(w);
-    if(!(W > 0.) || std::abs(k) > W) return;
-    const double base = std::atan2(w.y, w.x), delta = std::acos((std::max)(-1., (std::min)(1., k / W)));
-    out.push_back(base + delta);
-    out.push_back(base - delta);
-  }
-
-  /// conic (c1, p1) and conic (c2, p2), same gradient a: polar angles around c1 of their meeting
-  /// points, by sign changes of the second conic's level function along the first (64 steps a
-  /// turn) refined by bisection
-  static void conic_conic_angles(Vec2 c1, double p1, Vec2 c2, double p2, Vec2 a, std::vector<double>& out)
-  {
-    auto point = [&](double th) {
-      const Vec2 u{std::cos(th), std::sin(th)};
-      return c1 + (p1 / (1. - internal::dot(a, u))) * u;
-    };
-    auto level = [&](double th) {
-      const Vec2 x = point(th) - c2;
-      return internal::norm(x) - p2 - internal::dot(a, x);
-    };
-    const int n = 64;
-    double t0 = 0., f0 = level(0.);
-    for(int i = 1; i <= n; ++i) {
-      const double t1 = 2. * internal::kPi * double(i) / double(n), f1 = level(t1);
-      if((f0 < 0.) != (f1 < 0.)) {
-        double lo = t0, hi = t1, flo = f0;
-        for(int it = 0; it < 64 && hi - lo > 1e-15; ++it) {
-          const double mid = 0.5 * (lo + hi), fm = level(mid);
-          if((fm < 0.) == (flo < 0.)) { lo = mid; flo = fm; } else hi = mid;
-        }
-        out.push_back(0.5 * (lo + hi));
-      }
-      t0 = t1;
-      f0 = f1;
-    }
-  }
-
   /// Distance generators of face f whose disk of radius R - sigma meets the face.
   void collect_generators(int f, double R, std::vector<Generator>& gens) const
   {
@@ -1075,7 +1028,7 @@ private:
         // face's edges, a wedge boundary or another generator's curve inside the face (a cut
         // outside the face would only split a piece that is dropped anyway)
         angles.clear();
-        for(int i = 0; i < 3; ++i) conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
+        for(int i = 0; i < 3; ++i) internal::conic_line_angles(g.c, r, level.a, P[i], P[(i + 1) % 3], angles);
         if(angles.empty() && !inside_face(f, curve_point(g, r, 0.))) continue;
         for(std::size_t hi = 0; hi < gens.size(); ++hi)
         {
@@ -1083,11 +1036,11 @@ private:
           if(h.window != nullptr)
           {
             const Vec2 a = h.eo + h.window->b0 * h.eu, b = h.eo + h.window->b1 * h.eu;
-            conic_line_angles(g.c, r, level.a, h.c, a, angles);
-            conic_line_angles(g.c, r, level.a, h.c, b, angles);
+            internal::conic_line_angles(g.c, r, level.a, h.c, a, angles);
+            internal::conic_line_angles(g.c, r, level.a, h.c, b, angles);
           }
           if(hi == gi) continue;
-          conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
+          internal::conic_conic_angles(g.c, r, h.c, curve_radius(h), level.a, angles);
         }
         for(double& a : angles)
         {
