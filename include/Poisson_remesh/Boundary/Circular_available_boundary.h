@@ -134,8 +134,8 @@ void same_gradient_conic_arc_crossings(const Arc& a, const Arc& b, std::vector<A
   }
 }
 
-/// The same for arcs of which one at least is a conic, with different gradients (a circle and a
-/// conic, or arcs from an oracle that lays a face out otherwise): no closed form worth having (two
+/// The same for arcs of which one at least is a conic, with different gradients (a user's oracle:
+/// ours gives every arc of a face that face's radius gradient): no closed form worth having (two
 /// such conics meet in up to four points, a quartic), so the level function of b is followed
 /// along a, sign changes are bracketed on 64 steps per turn and refined by bisection to 1e-15 of
 /// a's parameter.

@@ -1,7 +1,7 @@
 // Poisson_remesh/Geodesic/internal/conic_geometry.h
 //
 // Where the curves of adaptive sampling's available boundary meet (Section 5.1, Eq. 4-5). Inside a
-// face laid out in the plane, a distance generator (an unfolded source c at distance sigma) meets
+// face laid out flat in 2D, a distance generator (an unfolded source c at distance sigma) meets
 // the level r0 + r(x), with r linear in the face (gradient a, |a| < 1), on the conic
 // |x - c| = p + a . (x - c), p = level(c) - sigma: an ellipse with a focus at c, met by each ray
 // from c once, at rho(u) = p / (1 - a . u). The iso-curve extraction cuts such a conic where it
@@ -48,18 +48,18 @@ inline void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vec
 /// conic (c1, p1) and conic (c2, p2), the same gradient a (|a| < 1, p1 > 0): the polar angles
 /// around c1 of their (at most two) meeting points.
 /// On the first conic, x = c1 + rho u with rho = p1 + a . (x - c1); the second's equation
-/// becomes |x - c2| = rho - K, K = p1 - p2 + a . (c2 - c1), a branch of a hyperbola with foci c1
-/// and c2. Squared, with d = c2 - c1: 2 rho (K - u . d) = K^2 - |d|^2, and with
-/// rho = p1 / (1 - a . u) a line again: ((K^2 - |d|^2) a - 2 p1 d) . u = K^2 - |d|^2 - 2 p1 K.
-/// A solution with rho < K meets the other branch (|x - c2| = K - rho), not the conic: dropped.
-/// (A pair of crossings closer than any fixed angular step is found as well as a lone one.)
+/// becomes |x - c2| = rho - K, K = p1 - p2 + a . (c2 - c1) (for |K| < |d| a hyperbola's branch,
+/// foci c1, c2). Squared, with d = c2 - c1: 2 rho (K - u . d) = K^2 - |d|^2, and with
+/// rho = p1 / (1 - a . u) linear in u: ((K^2 - |d|^2) a - 2 p1 d) . u = K^2 - |d|^2 - 2 p1 K.
+/// A solution with rho < K solves rho + |x - c2| = K instead (only when p2 <= 0): dropped. A close
+/// pair is found too, down to p2 ~ 1e-6 p1 (below, acos near 1 loses the angle: a miss possible).
 inline void conic_conic_angles(Vec2 c1, double p1, Vec2 c2, double p2, Vec2 a, std::vector<double>& out)
 {
   const Vec2 d = c2 - c1;
   const double K = p1 - p2 + dot(a, d), E = K * K - dot(d, d);
   const std::size_t first = out.size();
   polar_angles_of(E * a - (2. * p1) * d, E - 2. * p1 * K, out);
-  // (a relative slack: a meeting point at c2 itself, where rho = K, is kept; an extra angle only
+  // (a relative slack: a meeting point where rho = K (p2 = 0) is kept; an extra angle only
   // splits a piece of curve in two)
   std::size_t kept = first;
   for(std::size_t i = first; i < out.size(); ++i) {
