@@ -958,4 +958,13 @@ TEST_CASE("two conics of one face meet where a fine scan finds them, close pairs
   for(int k = 0; k < 2; ++k) CHECK(std::abs(found[k] - judge[k]) < 1e-9);
   CHECK(judge[1] - judge[0] < 2. * CGAL_PI / 64.);
   CHECK(std::floor(judge[0] / (2. * CGAL_PI / 64.)) == std::floor(judge[1] / (2. * CGAL_PI / 64.)));
+  // a level at or below the second generator's own distance (p2 <= 0, which the extraction may
+  // ask for) is an empty curve: no meeting point, whatever the first conic
+  for(int i = 0; i < 2000; ++i) {
+    const Vec2 ci{U(rng), U(rng)}, cj{U(rng), U(rng)};
+    const Vec2 g{0.6 * U(rng), 0.6 * U(rng)};
+    std::vector<double> none;
+    Poisson_remesh::internal::conic_conic_angles(ci, P(rng), cj, -P(rng), g, none);
+    CHECK(none.empty());
+  }
 }

@@ -847,4 +847,15 @@ TEST_CASE("conic arcs of one face cross where a fine scan finds them, entering b
   CHECK(!on_a[1].entering);
   for(int k = 0; k < 2; ++k) CHECK(std::abs(on_a[k].t - judge[k].t) < 1e-9);
   CHECK(std::floor(judge[0].t * 64) == std::floor(judge[1].t * 64));
+  // grazing crossings are flagged: b, a's conic moved by 1e-9 of its size, meets it at two points
+  // where the curves make an angle of about 1e-9 (the caller then decides by distances), while
+  // the close pair above crosses at a clear angle
+  CHECK(on_a[0].reliable);
+  CHECK(on_a[1].reliable);
+  Arc moved = a;
+  moved.center = {{a.center[0] + 1e-9, a.center[1] + 0.5e-9}};
+  std::vector<PR::internal::Arc_crossing> grazing;
+  PR::internal::arc_crossings(a, moved, &grazing, nullptr);
+  REQUIRE(grazing.size() == 2);
+  for(const auto& x : grazing) CHECK(!x.reliable);
 }
