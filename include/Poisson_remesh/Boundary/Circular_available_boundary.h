@@ -99,6 +99,16 @@ struct Arc_crossing
   bool reliable;
 };
 
+/// The parameter in [0, 1] of the point `delta` radians (counter-clockwise) past an arc's start on
+/// an arc spanning `span`, or -1 when the point is not on it (1e-12 radians of slack at both ends)
+inline double arc_parameter(double delta, double span)
+{
+  const double tol = 1e-12;
+  delta -= two_pi * std::floor(delta / two_pi);
+  if(delta > span + tol && delta < two_pi - tol) return -1.0;
+  return (delta > span + tol) ? 0.0 : (span > 0 ? std::min(1.0, delta / span) : 0.0);
+}
+
 /// The same for conic arcs (adaptive density, §5.1) with the same gradient: the arcs of one face,
 /// whose level r0 + r(x) has the face's radius gradient whatever the sample. Their conics meet in
 /// at most two points, found in closed form (Geodesic/internal/conic_geometry.h); each is kept
@@ -106,24 +116,20 @@ struct Arc_crossing
 template <class Arc>
 void same_gradient_conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& out)
 {
-  const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start, tol = 1e-12;
+  const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start;
   if(!(span_a > 0)) return;
   const Vec2 g{a.gradient[0], a.gradient[1]};
   thread_local std::vector<double> angles;
   angles.clear();
   conic_conic_angles(Vec2{a.center[0], a.center[1]}, a.radius, Vec2{b.center[0], b.center[1]}, b.radius, g, angles);
   for(const double th : angles) {
-    double da = th - a.theta_start;
-    da -= two_pi * std::floor(da / two_pi);
-    if(da > span_a + tol && da < two_pi - tol) continue;   // not on a
-    const double t = da > span_a + tol ? 0.0 : std::min(1.0, da / span_a);
+    const double t = arc_parameter(th - a.theta_start, span_a);
+    if(t < 0) continue;   // not on a
     const Vec2 u{std::cos(th), std::sin(th)}, v{-u.y, u.x};
     const double rho = a.radius / (1. - dot(g, u));
     const Vec2 p = Vec2{a.center[0], a.center[1]} + rho * u;
     const Vec2 x = p - Vec2{b.center[0], b.center[1]};
-    double db = std::atan2(x.y, x.x) - b.theta_start;
-    db -= two_pi * std::floor(db / two_pi);
-    if(db > span_b + tol && db < two_pi - tol) continue;   // not on b
+    if(arc_parameter(std::atan2(x.y, x.x) - b.theta_start, span_b) < 0) continue;   // not on b
     // a's forward tangent d(rho u)/dtheta, and the gradient of b's level function |x| - g . x - radius
     const Vec2 tangent = (rho * rho * dot(g, v) / a.radius) * u + rho * v;
     const double d = norm(x);
@@ -150,7 +156,7 @@ void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& 
   if(!(span > 0)) return;
   const int n = std::max(8, int(std::ceil(span / (two_pi / 64))));
   auto f = [&](double t) { return b.level_function(a.point_2(t)); };
-  const double span_b = b.theta_end - b.theta_start, tol = 1e-12;
+  const double span_b = b.theta_end - b.theta_start;
   double t0 = 0, f0 = f(0.0);
   for(int i = 1; i <= n; ++i) {
     const double t1 = double(i) / double(n), f1 = f(t1);
@@ -162,9 +168,7 @@ void conic_arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>& 
       }
       const double t = 0.5 * (lo + hi);
       const std::array<double, 2> p = a.point_2(t);
-      double db = std::atan2(p[1] - b.center[1], p[0] - b.center[0]) - b.theta_start;
-      db -= two_pi * std::floor(db / two_pi);
-      if(!(db > span_b + tol && db < two_pi - tol)) {   // on b
+      if(arc_parameter(std::atan2(p[1] - b.center[1], p[0] - b.center[0]) - b.theta_start, span_b) >= 0) {   // on b
         const double e = 1e-7;
         const std::array<double, 2> p0 = a.point_2(std::max(0.0, t - e)), p1 = a.point_2(std::min(1.0, t + e));
         const double tx = p1[0] - p0[0], ty = p1[1] - p0[1];
@@ -206,18 +210,11 @@ void arc_crossings(const Arc& a, const Arc& b, std::vector<Arc_crossing>* on_a, 
   const double h = std::sqrt(std::max(0.0, ra * ra - x * x));
   const double ux = dx / d, uy = dy / d;
   const double span_a = a.theta_end - a.theta_start, span_b = b.theta_end - b.theta_start;
-  const double tol = 1e-12;
-  // the parameter on an arc of the angle `delta` past its start, or -1 when the point is not on it
-  auto parameter = [tol](double delta, double span) {
-    delta -= two_pi * std::floor(delta / two_pi);
-    if(delta > span + tol && delta < two_pi - tol) return -1.0;
-    return (delta > span + tol) ? 0.0 : (span > 0 ? std::min(1.0, delta / span) : 0.0);
-  };
   for(int sgn : {-1, 1}) {
     const double px = a.center[0] + x * ux - sgn * h * uy, py = a.center[1] + x * uy + sgn * h * ux;
-    const double tb = parameter(std::atan2(py - b.center[1], px - b.center[0]) - b.theta_start, span_b);
+    const double tb = arc_parameter(std::atan2(py - b.center[1], px - b.center[0]) - b.theta_start, span_b);
     if(tb >= 0) {
-      const double ta = parameter(std::atan2(py - a.center[1], px - a.center[0]) - a.theta_start, span_a);
+      const double ta = arc_parameter(std::atan2(py - a.center[1], px - a.center[0]) - a.theta_start, span_a);
       if(ta >= 0) {
         // forward directions (counter-clockwise tangents) of a and b at the crossing
         const double ta_x = -(py - a.center[1]), ta_y = px - a.center[0];

@@ -32,8 +32,8 @@ inline void polar_angles_of(Vec2 w, double k, std::vector<double>& out)
   out.push_back(base - delta);
 }
 
-/// conic |x - c| = p + a . (x - c) (|a| < 1, p > 0) and the line through P and Q: the polar
-/// angles around c of the (at most two) meeting points
+/// conic |x - c| = p + a . (x - c) (|a| < 1, p > 0) and the line through the two points given:
+/// the polar angles around c of the (at most two) meeting points
 inline void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vector<double>& out)
 {
   const Vec2 d = Q - P;
