@@ -958,6 +958,25 @@ TEST_CASE("two conics of one face meet where a fine scan finds them, close pairs
   for(int k = 0; k < 2; ++k) CHECK(std::abs(found[k] - judge[k]) < 1e-9);
   CHECK(judge[1] - judge[0] < 2. * CGAL_PI / 64.);
   CHECK(std::floor(judge[0] / (2. * CGAL_PI / 64.)) == std::floor(judge[1] / (2. * CGAL_PI / 64.)));
+  // smaller and smaller conics centred on a large one (p2 from 1e-4 to 1e-11 of p1): two crossings
+  // each, one on either side of the centre's angle, on the small conic to a small part of its
+  // size (an acos of a cosine near 1 loses them: from p2 ~ 1e-7 p1 one is missed, and the level
+  // is off by more than p2)
+  for(int exponent = 4; exponent <= 11; ++exponent)
+    for(int i = 0; i < 300; ++i) {
+      Vec2 g{U(rng), U(rng)};
+      const double ng = std::hypot(g.x, g.y), e = 0.9 * std::abs(U(rng));
+      if(ng > 0.) g = Vec2{e * g.x / ng, e * g.y / ng};
+      const Vec2 ci{U(rng), U(rng)};
+      const double pi = 0.1 + std::abs(U(rng)), th = CGAL_PI * U(rng);
+      const Vec2 cj = conic_point(ci, pi, g, th);
+      const double pj = pi * std::pow(10., -exponent) * (0.5 + std::abs(U(rng)));
+      std::vector<double> two;
+      Poisson_remesh::internal::conic_conic_angles(ci, pi, cj, pj, g, two);
+      REQUIRE(two.size() == 2);
+      CHECK((std::remainder(two[0] - th, 2. * CGAL_PI) < 0.) != (std::remainder(two[1] - th, 2. * CGAL_PI) < 0.));
+      for(double t : two) CHECK(std::abs(level(cj, pj, g, conic_point(ci, pi, g, t))) < 0.02 * pj);
+    }
   // a level at or below the second generator's own distance (p2 <= 0, which the extraction may
   // ask for) is an empty curve: no meeting point, whatever the first conic
   for(int i = 0; i < 2000; ++i) {

@@ -50,24 +50,24 @@ inline void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vec
 /// On the first conic, x = c1 + rho u with rho = p1 + a . (x - c1); the second's equation
 /// becomes |x - c2| = rho - K, K = p1 - p2 + a . (c2 - c1) (for |K| < |d| a hyperbola's branch,
 /// foci c1, c2). Squared, with d = c2 - c1: 2 rho (K - u . d) = K^2 - |d|^2, and with
-/// rho = p1 / (1 - a . u) linear in u: ((K^2 - |d|^2) a - 2 p1 d) . u = K^2 - |d|^2 - 2 p1 K.
-/// A solution with rho < K solves rho + |x - c2| = K instead (only when p2 <= 0): dropped. A close
-/// pair is found too, down to p2 ~ 1e-6 p1 (below, acos near 1 loses the angle: a miss possible).
+/// rho = p1 / (1 - a . u) linear in u: w . u = k, w = E a - 2 p1 d, k = E - 2 p1 K,
+/// E = K^2 - |d|^2. The angles are base +- delta, base the direction of w and delta the angle
+/// whose cosine is k / |w|, its sine from |w|^2 - k^2 = -E (E (1 - |a|^2) + 4 p1 p2) in that
+/// closed form: for a small conic on a large one (p2 << p1) the difference of the two squares
+/// cancels, and an acos of k / |w| near 1 would lose the angle between the two crossings.
+/// Where p2 <= 0 the second conic has no point but c2 (|x - c2| + a . (x - c2) >= 0): no angle
+/// (the squared equation's solutions there have rho < K and solve rho + |x - c2| = K instead).
 inline void conic_conic_angles(Vec2 c1, double p1, Vec2 c2, double p2, Vec2 a, std::vector<double>& out)
 {
+  if(!(p2 > 0.)) return;
   const Vec2 d = c2 - c1;
   const double K = p1 - p2 + dot(a, d), E = K * K - dot(d, d);
-  const std::size_t first = out.size();
-  polar_angles_of(E * a - (2. * p1) * d, E - 2. * p1 * K, out);
-  // (a relative slack: a meeting point where rho = K (p2 = 0) is kept; an extra angle only
-  // splits a piece of curve in two)
-  std::size_t kept = first;
-  for(std::size_t i = first; i < out.size(); ++i) {
-    const Vec2 u{std::cos(out[i]), std::sin(out[i])};
-    const double rho = p1 / (1. - dot(a, u));
-    if(rho - K >= -1e-12 * (rho + std::abs(K))) out[kept++] = out[i];
-  }
-  out.resize(kept);
+  const Vec2 w = E * a - (2. * p1) * d;
+  const double k = E - 2. * p1 * K, sine2 = -E * (E * (1. - dot(a, a)) + 4. * p1 * p2);
+  if(!(sine2 >= 0.) || !(norm(w) > 0.)) return;
+  const double base = std::atan2(w.y, w.x), delta = std::atan2(std::sqrt(sine2), k);
+  out.push_back(base + delta);
+  out.push_back(base - delta);
 }
 
 } // namespace internal

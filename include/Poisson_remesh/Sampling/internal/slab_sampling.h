@@ -1,8 +1,8 @@
 // Poisson_remesh/Sampling/internal/slab_sampling.h
 //
 // The parallel mode of the boundary sampler (internal): the surface is cut into slabs across its
-// longest side, and the slabs fill in phases, the even ones at once, then the odd ones, and again
-// for as long as a slab's neighbours have added samples near it. As in the parallel Poisson-disk
+// longest side, and the slabs fill in two phases, the even ones at once, then the odd ones, each
+// slab once (fill_by_slabs says why once is enough). As in the parallel Poisson-disk
 // literature, two slabs that fill at the same time are farther apart than anything a sample can
 // read or change, so the result does not depend on the number of threads (nor on their timing):
 // each slab draws from its own generator, and the samples are gathered in slab order after each
@@ -22,8 +22,8 @@
 // lowered until that holds (three at least, else the sequential sampler runs).
 // Each slab starts with one random seed in its faces when no arc of the boundary is there yet
 // (refused where an earlier sample covers it), so that the slabs start at once instead of waiting
-// for a front to cross the surface; the final set is maximal whatever the seeds: a slab fills
-// again as long as samples were added within its reach, and ends with no arc in its faces.
+// for a front to cross the surface; the final set is maximal whatever the seeds: each slab ends
+// with no arc in its faces, and no later sample opens one there.
 
 #ifndef POISSON_REMESH_SAMPLING_INTERNAL_SLAB_SAMPLING_H
 #define POISSON_REMESH_SAMPLING_INTERNAL_SLAB_SAMPLING_H
@@ -41,7 +41,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -202,8 +201,6 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     std::vector<std::vector<Sub_face>> pieces;
     std::vector<std::vector<double>> piece_area;
     std::unique_ptr<Sub_sampler> sampler;
-    std::size_t seen = 0;                       // the samples looked at
-    bool started = false;
     std::vector<Sample> made;                   // its new samples of the phase
   };
   std::vector<std::unique_ptr<Slab_sampler>> slab(k);
@@ -334,48 +331,36 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
   };
   std::vector<std::size_t> owner(samples.size(), k);   // (k: a fixed sample)
   auto along = [&](const Sample& p) { return CGAL::to_double(p.point[axis]); };
-  // whether slab s has samples to take in among the first n
-  auto pending = [&](std::size_t s, std::size_t n) {
-    for(std::size_t i = slab[s]->seen; i < n; ++i)
-      if(owner[i] != s && along(samples[i]) >= layout[s].reach_a && along(samples[i]) <= layout[s].reach_b) return true;
-    return false;
-  };
+  // slab s takes in the samples of its reach (the first n), seeds its pieces and fills its faces
   auto fill_slab = [&](std::size_t s, std::size_t n) {
     Slab_sampler& x = *slab[s];
-    for(std::size_t i = x.seen; i < n; ++i)
+    for(std::size_t i = 0; i < n; ++i)
       if(owner[i] != s && along(samples[i]) >= layout[s].reach_a && along(samples[i]) <= layout[s].reach_b)
         x.sampler->insert(to_sub(x, samples[i].location), samples[i].kind, false);
-    x.seen = n;
     const std::size_t first_own = x.sampler->samples().size();
-    if(!x.started) {
-      // a seed in each piece of its faces (refused where a sample covers it)
-      x.started = true;
-      for(std::size_t c = 0; c < x.pieces.size(); ++c)
-        if(x.piece_area[c].back() > 0)
-          x.sampler->insert(x.sampler->random_location(x.pieces[c], x.piece_area[c]), Sample_kind::surface, true);
-    }
+    // a seed in each piece of its faces (refused where a sample covers it)
+    for(std::size_t c = 0; c < x.pieces.size(); ++c)
+      if(x.piece_area[c].back() > 0)
+        x.sampler->insert(x.sampler->random_location(x.pieces[c], x.piece_area[c]), Sample_kind::surface, true);
     x.sampler->fill();
     for(std::size_t i = first_own; i < x.sampler->samples().size(); ++i) x.made.push_back(from_sub(x, x.sampler->samples()[i]));
   };
-
-  for(std::size_t round = 0;; ++round) {
-    if(round > 64 * k) throw std::logic_error("fill_by_slabs: the slabs do not settle");
-    bool any = false;
-    for(std::size_t parity = 0; parity < 2; ++parity) {
-      const std::size_t n = samples.size();
-      std::vector<std::size_t> todo;
-      for(std::size_t s = parity; s < k; s += 2)
-        if(!slab[s]->started || pending(s, n)) todo.push_back(s);
-      if(todo.empty()) continue;
-      any = true;
-      for_each_index<ConcurrencyTag>(todo.size(), [&](std::size_t t) { fill_slab(todo[t], n); }, 1);
-      for(std::size_t s : todo) {
-        for(Sample& p : slab[s]->made) { samples.push_back(std::move(p)); owner.push_back(s); }
-        slab[s]->made.clear();
-      }
-      on_phase(samples.size());
+  // Each slab fills once, in its phase: the even ones, then the odd ones. A fill leaves no arc in
+  // the slab's faces, so every point of them is covered by a disk of a sample it knows (the
+  // boundary of an uncovered part would be an arc there, unless the part were a whole piece of the
+  // faces, which its seed would have started). A later sample only covers more and opens no arc
+  // there again: the even slabs need not take in the odd ones' samples, and the odd slabs, which
+  // take in every earlier sample of their reach, complete a maximal set.
+  for(std::size_t parity = 0; parity < 2; ++parity) {
+    const std::size_t n = samples.size();
+    std::vector<std::size_t> todo;
+    for(std::size_t s = parity; s < k; s += 2) todo.push_back(s);
+    for_each_index<ConcurrencyTag>(todo.size(), [&](std::size_t t) { fill_slab(todo[t], n); }, 1);
+    for(std::size_t s : todo) {
+      for(Sample& p : slab[s]->made) { samples.push_back(std::move(p)); owner.push_back(s); }
+      slab[s]->made.clear();
     }
-    if(!any) break;
+    on_phase(samples.size());
   }
   for(const auto& x : slab) {
     const Sampling_statistics& t = x->sampler->statistics();
