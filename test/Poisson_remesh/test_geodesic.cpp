@@ -959,9 +959,9 @@ TEST_CASE("two conics of one face meet where a fine scan finds them, close pairs
   CHECK(judge[1] - judge[0] < 2. * CGAL_PI / 64.);
   CHECK(std::floor(judge[0] / (2. * CGAL_PI / 64.)) == std::floor(judge[1] / (2. * CGAL_PI / 64.)));
   // smaller and smaller conics centred on a large one (p2 from 1e-4 to 1e-11 of p1): two crossings
-  // each, one on either side of the centre's angle, on the small conic to a small part of its
-  // size (an acos of a cosine near 1 loses them: from p2 ~ 1e-7 p1 one is missed, and the level
-  // is off by more than p2)
+  // each, one on either side of the centre's angle, on the small conic to a small fraction of its
+  // size (an acos of a cosine near 1 loses them: from p2 ~ 1e-7 p1 one may be missed, and the level
+  // is off by up to about p2)
   for(int exponent = 4; exponent <= 11; ++exponent)
     for(int i = 0; i < 300; ++i) {
       Vec2 g{U(rng), U(rng)};

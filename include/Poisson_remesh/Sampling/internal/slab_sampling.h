@@ -22,8 +22,8 @@
 // lowered until that holds (three at least, else the sequential sampler runs).
 // Each slab starts with one random seed in its faces when no arc of the boundary is there yet
 // (refused where an earlier sample covers it), so that the slabs start at once instead of waiting
-// for a front to cross the surface; the final set is maximal whatever the seeds: each slab ends
-// with no arc in its faces, and no later sample opens one there.
+// for a front to travel over the surface; the final set is maximal whatever the seeds: each slab
+// ends with no arc on its faces, and no later sample opens one there.
 
 #ifndef POISSON_REMESH_SAMPLING_INTERNAL_SLAB_SAMPLING_H
 #define POISSON_REMESH_SAMPLING_INTERNAL_SLAB_SAMPLING_H
@@ -345,12 +345,12 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     x.sampler->fill();
     for(std::size_t i = first_own; i < x.sampler->samples().size(); ++i) x.made.push_back(from_sub(x, x.sampler->samples()[i]));
   };
-  // Each slab fills once, in its phase: the even ones, then the odd ones. A fill leaves no arc in
-  // the slab's faces, so every point of them is covered by a disk of a sample it knows (the
-  // boundary of an uncovered part would be an arc there, unless the part were a whole piece of the
-  // faces, which its seed would have started). A later sample only covers more and opens no arc
-  // there again: the even slabs need not take in the odd ones' samples, and the odd slabs, which
-  // take in every earlier sample of their reach, complete a maximal set.
+  // Each slab fills once, in its phase: the even ones, then the odd ones. A fill leaves no arc on
+  // the slab's faces, so each point of them is covered by a disk of a sample it knows (an uncovered
+  // region's boundary would be an arc there, unless the region were a whole piece of the faces, which
+  // its seed starts), up to the arcs a sampler drops (runs shorter than its minimum length; adaptive
+  // arcs whose drawn point is covered). A later sample only covers more: the even slabs need not take
+  // the odd ones' samples, and the odd slabs, which take every earlier sample of their reach, end it.
   for(std::size_t parity = 0; parity < 2; ++parity) {
     const std::size_t n = samples.size();
     std::vector<std::size_t> todo;
