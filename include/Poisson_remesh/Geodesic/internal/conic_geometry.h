@@ -32,17 +32,17 @@ inline void polar_angles_of(Vec2 w, double k, std::vector<double>& out)
   out.push_back(base - delta);
 }
 
-/// conic |x - c| = p + a . (x - c) (|a| < 1, p > 0) and the line through the two points given:
+/// conic |x - c| = gap + a . (x - c) (|a| < 1, gap > 0) and the line through `from` and `to`:
 /// the polar angles around c of the (at most two) meeting points
-inline void conic_line_angles(Vec2 c, double p, Vec2 a, Vec2 P, Vec2 Q, std::vector<double>& out)
+inline void conic_line_angles(Vec2 c, double gap, Vec2 a, Vec2 from, Vec2 to, std::vector<double>& out)
 {
-  const Vec2 d = Q - P;
+  const Vec2 d = to - from;
   const double L = norm(d);
   if(!(L > 0.)) return;
   const Vec2 n{-d.y / L, d.x / L};
-  // rho n.u = k on the line, rho (1 - a.u) = p on the conic: (p n + k a) . u = k
-  const double k = dot(n, P - c);
-  polar_angles_of(p * n + k * a, k, out);
+  // rho n.u = k on the line, rho (1 - a.u) = gap on the conic: (gap n + k a) . u = k
+  const double k = dot(n, from - c);
+  polar_angles_of(gap * n + k * a, k, out);
 }
 
 /// conic (c1, p1) and conic (c2, p2), the same gradient a (|a| < 1, p1 > 0): the polar angles

@@ -329,13 +329,13 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     out.radius = p.radius;
     return out;
   };
-  std::vector<std::size_t> owner(samples.size(), k);   // (k: a fixed sample)
   auto along = [&](const Sample& p) { return CGAL::to_double(p.point[axis]); };
-  // slab s takes in the samples of its reach (the first n), seeds its pieces and fills its faces
+  // slab s takes in the samples of its reach (the first n: none of them its own, made only now),
+  // seeds its pieces and fills its faces
   auto fill_slab = [&](std::size_t s, std::size_t n) {
     Slab_sampler& x = *slab[s];
     for(std::size_t i = 0; i < n; ++i)
-      if(owner[i] != s && along(samples[i]) >= layout[s].reach_a && along(samples[i]) <= layout[s].reach_b)
+      if(along(samples[i]) >= layout[s].reach_a && along(samples[i]) <= layout[s].reach_b)
         x.sampler->insert(to_sub(x, samples[i].location), samples[i].kind, false);
     const std::size_t first_own = x.sampler->samples().size();
     // a seed in each piece of its faces (refused where a sample covers it)
@@ -357,7 +357,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     for(std::size_t s = parity; s < k; s += 2) todo.push_back(s);
     for_each_index<ConcurrencyTag>(todo.size(), [&](std::size_t t) { fill_slab(todo[t], n); }, 1);
     for(std::size_t s : todo) {
-      for(Sample& p : slab[s]->made) { samples.push_back(std::move(p)); owner.push_back(s); }
+      for(Sample& p : slab[s]->made) samples.push_back(std::move(p));
       slab[s]->made.clear();
     }
     on_phase(samples.size());
