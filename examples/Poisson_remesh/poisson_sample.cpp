@@ -139,6 +139,6 @@ int main(int argc, char** argv)
             << result.number_of_feature_samples << " on feature curves), spacing 2r = " << 2 * result.radius
             << (result.max_radius > result.min_radius ? " (median; adaptive from " + std::to_string(2 * result.min_radius) + " to " +
                                                           std::to_string(2 * result.max_radius) + ")" : std::string())
-            << ", " << seconds << " s\n";
+            << (result.statistics.slabs > 0 ? ", " + std::to_string(result.statistics.slabs) + " slabs" : std::string()) << ", " << seconds << " s\n";
   return cli::ok;
 }

@@ -301,13 +301,13 @@ struct Poisson_disk_sampler
     mode the counts come after each phase of the slabs
 
   `ConcurrencyTag`: CGAL::Sequential_tag (the default), or CGAL::Parallel_tag (needs TBB) /
-  CGAL::Parallel_if_available_tag: the surface is cut into three slabs across its longest side,
-  which fill on TBB's threads in phases (the two outer ones at once, then the middle one, then
-  again any slab whose neighbours added samples near it, until none has room left). The set is
-  as maximal and as separated as the sequential one, but another one: it depends on the seed and
-  not on the number of threads. A surface too short for three slabs at its sampling radius (fewer
-  than about 25 spacings along its longest side), or a user's `geodesic_oracle`, is sampled
-  sequentially.
+  CGAL::Parallel_if_available_tag: the surface is cut into four slabs across its longest side
+  (large, thin, large, thin), or three where four do not fit (large, thin, large), which fill on
+  TBB's threads in two phases, each slab once: the large ones at once, then the thin ones
+  (`Poisson_disk_sampling_result::statistics.slabs` tells how many). The set is as maximal and as
+  separated as the sequential one, but another one: it depends on the seed and not on the number
+  of threads. A surface too short for three slabs at its sampling radius (fewer than about 25
+  spacings along its longest side), or a user's `geodesic_oracle`, is sampled sequentially.
 */
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 Poisson_disk_sampling_result poisson_disk_sample(const TriangleMesh& tm, OutputIterator out,

@@ -25,6 +25,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <limits>
 #include <optional>
@@ -49,14 +50,60 @@ struct Fidelity_settings
   bool final_pass = true;
 };
 
+/// The input's points that the fidelity insertions measure -- its vertices (those on a face), edge
+/// midpoints and face centroids, with the vertices each is made of (by their place among the
+/// vertices) -- and a grid of them all (cells of the tolerance). The same for every pass on one
+/// input and tolerance: built by the first.
+template <class InputMesh, class Point_3>
+struct Fidelity_input_points
+{
+  std::vector<Point_3> vertex_points;   ///< the input's vertices on a face
+  std::vector<std::pair<Point_3, std::array<std::size_t, 2>>> midpoints;   ///< each edge's midpoint, and its ends among vertex_points
+  std::vector<std::pair<Point_3, std::array<std::size_t, 3>>> centroids;   ///< each face's centroid, and its corners among vertex_points
+  std::optional<Poisson_remesh::internal::Near_points<Point_3>> near;   ///< all of them, in cells of `tolerance`
+  double tolerance = -1;   ///< the tolerance they were read for (-1: not yet read)
+
+  /** reads them from `input` for the tolerance `tol`, unless they were read for it */ void build(const InputMesh& input, double tol)
+  {
+    if(near && tolerance == tol) return;
+    tolerance = tol;
+    vertex_points.clear();
+    midpoints.clear();
+    centroids.clear();
+    auto in_vpm = get(CGAL::vertex_point, input);
+    auto place = get(CGAL::dynamic_vertex_property_t<std::size_t>(), input);
+    for(auto v : vertices(input))
+      if(halfedge(v, input) != boost::graph_traits<InputMesh>::null_halfedge()) {
+        put(place, v, vertex_points.size());
+        vertex_points.push_back(get(in_vpm, v));
+      }
+    for(auto e : edges(input)) {
+      const auto a = source(e, input), b = target(e, input);
+      midpoints.push_back({CGAL::midpoint(get(in_vpm, a), get(in_vpm, b)), {{get(place, a), get(place, b)}}});
+    }
+    for(auto f : faces(input)) {
+      const auto h = halfedge(f, input);
+      const auto a = source(h, input), b = target(h, input), c = target(next(h, input), input);
+      centroids.push_back({CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c)), {{get(place, a), get(place, b), get(place, c)}}});
+    }
+    std::vector<Point_3> all = vertex_points;
+    for(const auto& x : midpoints) all.push_back(x.first);
+    for(const auto& x : centroids) all.push_back(x.first);
+    near.emplace(all, tol);
+  }
+};
+
 /// One pass of fidelity insertions in `m`; `new_vertex(v, on_curve)` is told each new vertex (true
 /// for a split of a border or feature curve's edge); the others are also added to `added` (kept
 /// sorted: the caller pins these vertices). The distance queries run on
 /// TBB's threads with `ConcurrencyTag` = CGAL::Parallel_tag (`is_feature` is called from one thread;
-/// the result is the same in both modes). Returns the number of vertices inserted.
+/// the result is the same in both modes). `input_cache`, when given, keeps the input's points (and
+/// their grid) from one pass to the next: the input does not change. Returns the number of
+/// vertices inserted.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Context, class Mesh, class IsFeatureEdge, class NewVertex>
 std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge is_feature, NewVertex new_vertex, const Fidelity_settings& s,
-                                    Relaxation_statistics& stats, std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added)
+                                    Relaxation_statistics& stats, std::vector<typename boost::graph_traits<Mesh>::vertex_descriptor>& added,
+                                    Fidelity_input_points<typename Context::Input_mesh, typename Context::Point_3>* input_cache = nullptr)
 {
   typedef typename Context::Point_3 Point_3;
   typedef typename Context::Vector_3 Vector_3;
@@ -67,7 +114,6 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Primitive>> Tree;
   auto vpm = get(CGAL::vertex_point, m);
-  auto in_vpm = get(CGAL::vertex_point, ctx.input());
   const double tol = s.max_deviation * ctx.diagonal();
   if(!(tol > 0) || faces(m).empty()) return 0;
   // the mesh's tree, built on first use and before the mesh changes (on a mesh that follows its
@@ -116,40 +162,28 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     for(std::size_t i = 0; i < queries.size(); ++i)
       if(d2s[i] > tol * tol) far.push_back({d2s[i], queries[i]});
   };
+  // the input's points, read once for all the passes of a relaxation (`input_cache`)
+  Fidelity_input_points<InputMesh, Point_3> own_points;
+  Fidelity_input_points<InputMesh, Point_3>& on_input = input_cache != nullptr ? *input_cache : own_points;
+  on_input.build(ctx.input(), tol);
   // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
   // of its vertices is not queried)
-  auto vertex_distance = get(CGAL::dynamic_vertex_property_t<double>(), ctx.input());
-  std::vector<typename boost::graph_traits<InputMesh>::vertex_descriptor> queried;
-  std::vector<Point_3> input_points;   // (all of them, for the other way below)
-  queries.clear();
-  for(auto v : vertices(ctx.input())) {
-    put(vertex_distance, v, std::numeric_limits<double>::infinity());
-    if(halfedge(v, ctx.input()) != boost::graph_traits<InputMesh>::null_halfedge()) { queried.push_back(v); queries.push_back(get(in_vpm, v)); }
-  }
-  input_points = queries;
+  std::vector<double> vertex_distance(on_input.vertex_points.size());
+  queries = on_input.vertex_points;
   distances();
   take_far();
-  for(std::size_t i = 0; i < queried.size(); ++i) put(vertex_distance, queried[i], std::sqrt(d2s[i]));
-  auto near_by_way_of = [&](const Point_3& x, auto v) {
-    return get(vertex_distance, v) + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, get(in_vpm, v)))) <= tol;
+  for(std::size_t i = 0; i < vertex_distance.size(); ++i) vertex_distance[i] = std::sqrt(d2s[i]);
+  auto near_by_way_of = [&](const Point_3& x, std::size_t i) {
+    return vertex_distance[i] + std::sqrt(CGAL::to_double(CGAL::squared_distance(x, on_input.vertex_points[i]))) <= tol;
   };
   queries.clear();
-  for(auto e : edges(ctx.input())) {
-    const auto a = source(e, ctx.input()), b = target(e, ctx.input());
-    const Point_3 x = CGAL::midpoint(get(in_vpm, a), get(in_vpm, b));
-    input_points.push_back(x);
-    if(!near_by_way_of(x, a) && !near_by_way_of(x, b)) queries.push_back(x);
-  }
+  for(const auto& [x, ends] : on_input.midpoints)
+    if(!near_by_way_of(x, ends[0]) && !near_by_way_of(x, ends[1])) queries.push_back(x);
   distances();
   take_far();
   queries.clear();
-  for(auto f : faces(ctx.input())) {
-    const auto h = halfedge(f, ctx.input());
-    const auto a = source(h, ctx.input()), b = target(h, ctx.input()), c = target(next(h, ctx.input()), ctx.input());
-    const Point_3 x = CGAL::centroid(get(in_vpm, a), get(in_vpm, b), get(in_vpm, c));
-    input_points.push_back(x);
-    if(!near_by_way_of(x, a) && !near_by_way_of(x, b) && !near_by_way_of(x, c)) queries.push_back(x);
-  }
+  for(const auto& [x, corners] : on_input.centroids)
+    if(!near_by_way_of(x, corners[0]) && !near_by_way_of(x, corners[1]) && !near_by_way_of(x, corners[2])) queries.push_back(x);
   distances();
   take_far();
   // and the other way: a triangle of the mesh whose centroid is far from the input (it spans a
@@ -160,7 +194,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // (a point within the tolerance of a point of the input -- one of its vertices, edge midpoints
   // and triangle centroids listed above, queried or not -- is near the input: its squared
   // distance is given as tol^2, a bound, and it is not projected)
-  const Poisson_remesh::internal::Near_points<Point_3> near_input(input_points, tol);
+  const Poisson_remesh::internal::Near_points<Point_3>& near_input = *on_input.near;
   auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
     std::vector<std::pair<double, Point_3>> nearest(points.size());
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(points.size(), [&](std::size_t i) {

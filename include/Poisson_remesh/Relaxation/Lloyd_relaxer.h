@@ -213,7 +213,7 @@ public:
     // the operators beyond the paper, each a round of its own
     auto fidelity = [&]() -> std::size_t {
       if constexpr(may_add)
-        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points<ConcurrencyTag>(ctx, mesh, is_feature, added_vertex, s.fidelity, stats, pinned); }) : 0;
+        return tolerance > 0 ? clock.timed(T.fidelity, [&] { return P::insert_far_input_points<ConcurrencyTag>(ctx, mesh, is_feature, added_vertex, s.fidelity, stats, pinned, &fidelity_points_); }) : 0;
       else return 0;
     };
     auto optimize_angles = [&] {
@@ -313,6 +313,9 @@ public:
 private:
   std::function<void(const char*, std::size_t, std::size_t)> progress_;
   Context context_;
+  // the input's points that each fidelity pass measures, read at the first (the input does not
+  // change: the remakes' relaxations use them too; relax() is not called from two threads at once)
+  mutable Postprocessing::Fidelity_input_points<InputMesh, Point_3> fidelity_points_;
 };
 
 } // namespace Poisson_remesh

@@ -64,6 +64,7 @@ struct Sampling_statistics
   std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
   std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border
   std::size_t dropped_arcs = 0;            ///< boundary arcs found inside an earlier sample's region (adaptive density) or with no finite point (zero-area faces)
+  std::size_t slabs = 0;                   ///< the slabs of the parallel mode (0: the sequential sampler ran)
 };
 
 namespace internal {

@@ -43,6 +43,7 @@
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/quality_report.h>
 #include <Poisson_remesh/internal/near_points.h>
+#include <Poisson_remesh/internal/parallel.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -138,17 +139,21 @@ regrading_places(const TriangleMesh& tm, const InputMesh& input, IsFixed is_fixe
 {
   Regrading_places<Point_3> r;
   r.floor = s.min_angle;
-  {
-    Quality_report q;
-    fill_min_angle_away_from_sharp_corners(tm, get(CGAL::vertex_point, tm), input, 60.0, q);
-    if(q.min_angle_away_from_sharp_corners) r.min_angle_away = *q.min_angle_away_from_sharp_corners;
-  }
   auto vpm = get(CGAL::vertex_point, tm);
   auto centroid_of = [&](typename boost::graph_traits<TriangleMesh>::face_descriptor f) {
     const auto h = halfedge(f, tm);
     return CGAL::centroid(get(vpm, source(h, tm)), get(vpm, target(h, tm)), get(vpm, target(next(h, tm), tm)));
   };
-  const auto pairs = intersecting_pairs<ConcurrencyTag>(tm);
+  // the smallest angle away from sharp corners and the crossing pairs, at once with
+  // CGAL::Parallel_tag (both only read the meshes; the first adds its maps to the input alone, the
+  // second to tm alone, whose point map is read above)
+  Face_pairs<TriangleMesh> pairs;
+  for_each_index<ConcurrencyTag>(2, [&](std::size_t task) {
+    if(task == 1) { pairs = intersecting_pairs<ConcurrencyTag>(tm); return; }
+    Quality_report q;
+    fill_min_angle_away_from_sharp_corners(tm, vpm, input, 60.0, q);
+    if(q.min_angle_away_from_sharp_corners) r.min_angle_away = *q.min_angle_away_from_sharp_corners;
+  }, 1);
   if(!pairs.empty()) {
     if(!input_crossings) input_crossings.emplace(input);
     const double reach = 2 * mean_edge_length(tm, vpm);   // (as the quality report's)

@@ -18,8 +18,8 @@
 //     slab's sampler ("the reach", E +- 2r);
 //   - their disks must be exact in E: geodesic paths no longer than 2r from a point stay within
 //     the ball of radius 2r around it, so the submesh holds every face meeting E +- 4r.
-// Two slabs fill at once only when neither one's reach meets the other's faces; the slab count is
-// lowered until that holds (three at least, else the sequential sampler runs).
+// Two slabs fill at once only when neither one's reach meets the other's faces; the slabs are
+// made wider, then fewer, until that holds (three at least, else the sequential sampler runs).
 // Each slab starts with one random seed in its faces when no arc of the boundary is there yet
 // (refused where an earlier sample covers it), so that the slabs start at once instead of waiting
 // for a front to travel over the surface; the final set is maximal whatever the seeds: each slab
@@ -52,11 +52,13 @@ namespace internal {
 /// The settings of the slab decomposition.
 struct Slab_sampling_settings
 {
-  /// The middle slab's share of the area, the first that fits: the two outer slabs fill at once,
-  /// the middle one after them. Each sample within the reach of a slab's border is propagated
-  /// again by its neighbour, so that more slabs (more borders) would cost more than a second
-  /// thread saves.
-  std::vector<double> middle_shares = {0.06, 0.1, 0.15, 0.2, 0.3};
+  /// The thin slabs' share of the area each, the first that fits: two large slabs fill at once,
+  /// then the thin ones. Each sample within the reach of a slab's border is propagated again by its
+  /// neighbour, so that more slabs (more borders) would cost more than a second thread saves.
+  std::vector<double> thin_shares = {0.06, 0.1, 0.15, 0.2, 0.3};
+  /// Four slabs (large, thin, large, thin) where they fit, the two thin ones filling at once;
+  /// false: three (large, thin, large), the thin one filling alone.
+  bool four_slabs = true;
   /// A slab is at least this many times as wide as its reach beyond its faces.
   double min_width_in_reaches = 2.0;
 };
@@ -179,12 +181,18 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
         if(slabs[i].reach_b >= slabs[j].a || slabs[j].reach_a <= slabs[i].b) return std::vector<Slab>();
     return slabs;
   };
-  // Three slabs: two large ones that fill at once, and between them the thinnest that keeps them
-  // out of each other's reach, which fills after them (its share of the area is the sequential
-  // part of the run)
+  // Four slabs where they fit: two large ones that fill at once, then two thin ones, one between
+  // them -- the thinnest that keeps them out of each other's reach -- and one at the far end, at
+  // once too (on two threads neither phase leaves one idle, whatever the thin share). Else three:
+  // the two large ones, then the thin one between them alone (its share of the area then runs on
+  // one thread).
   std::vector<Slab> layout;
-  for(double middle : settings.middle_shares) {
-    layout = cut({0.5 * (1 - middle), middle, 0.5 * (1 - middle)});
+  for(const int count : {4, 3}) {
+    if(count == 4 && !settings.four_slabs) continue;
+    for(double thin : settings.thin_shares) {
+      layout = count == 4 ? cut({0.5 - thin, thin, 0.5 - thin, thin}) : cut({0.5 * (1 - thin), thin, 0.5 * (1 - thin)});
+      if(!layout.empty()) break;
+    }
     if(!layout.empty()) break;
   }
   if(layout.empty()) return false;
@@ -369,6 +377,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     stats.open_iso_curves += t.open_iso_curves;
     stats.dropped_arcs += t.dropped_arcs;
   }
+  stats.slabs = k;
   return true;
 }
 
