@@ -45,6 +45,7 @@
 #include <chrono>
 #include <optional>
 #include <functional>
+#include <future>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -259,12 +260,19 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
   auto np = PR::parameters::check_self_intersections(o.self_intersections)
                            .sampled_hausdorff(!o.full_report)
                            .hausdorff_relative_error_bound(1e-4);
-  PR::Labelled_quality_reports reports = {{"input", PR::quality_report<CGAL::Parallel_if_available_tag>(input, np)}};
+  // the input's report is made beside the remesh, on its own thread, from a copy of the input (the
+  // remesh may add property maps to the input while it runs); taken when the output's is due
+  const Mesh input_for_report = input;
+  auto input_report = std::async(std::launch::async, [&] { return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np); });
+  PR::Labelled_quality_reports reports;
   // (the reports against the input reuse its count of crossing pairs, when that count has no
   // degenerate face's pair with itself in it, instead of searching the input again)
-  const std::size_t input_crossings = reports[0].second.self_intersections_checked && reports[0].second.number_of_degenerate_faces == 0
-                                    ? reports[0].second.number_of_self_intersecting_face_pairs : std::size_t(-1);
-  auto np_against_input = np.reference_self_intersections(input_crossings);
+  auto against_input = [&] {
+    if(reports.empty()) reports.push_back({"input", input_report.get()});
+    const std::size_t input_crossings = reports[0].second.self_intersections_checked && reports[0].second.number_of_degenerate_faces == 0
+                                      ? reports[0].second.number_of_self_intersecting_face_pairs : std::size_t(-1);
+    return np.reference_self_intersections(input_crossings);
+  };
   std::optional<Mesh> peer;   // the peer's remesh, with --compare-peer (for --picture)
   try {
     if(o.method == "poisson") {
@@ -330,6 +338,7 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
       if(run.number_of_merged_samples)
         say << "  note: " << run.number_of_merged_samples
             << " samples fell on the vertex of another inside nearly zero-area input faces and were merged\n";
+      const auto np_against_input = against_input();
       reports.push_back({"output (Poisson)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np_against_input)});
       if(o.compare_peer) {
         peer.emplace();
@@ -338,7 +347,7 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
       }
     } else {
       row.seconds_remesh = run_peer(output);
-      reports.push_back({"output (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, np_against_input)});
+      reports.push_back({"output (CGAL isotropic)", PR::quality_report<CGAL::Parallel_if_available_tag>(output, input, against_input())});
     }
   } catch(const PR::Cancelled& e) {
     return fail(cli::internal_error, e.what());
