@@ -202,11 +202,11 @@ std::string format_figure(double x, int precision)
 // the row). Returns the exit code; fills `row`.
 int remesh_one(const Options& o, const std::string& in, const std::string& out, bool table, Terminal_progress& progress, Row& row)
 {
-#ifdef CGAL_LINKED_WITH_TBB
   // the parallel mode's threads (each process of a batch sets its own: a share of the cores)
   const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
-  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
-                                    o.threads ? o.threads : std::max<std::size_t>(1, cores / std::max<std::size_t>(1, o.jobs)));
+  const std::size_t thread_count = o.threads ? o.threads : std::max<std::size_t>(1, cores / std::max<std::size_t>(1, o.jobs));
+#ifdef CGAL_LINKED_WITH_TBB
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, thread_count);
 #endif
   const auto start = std::chrono::steady_clock::now();
   auto seconds_since = [](std::chrono::steady_clock::time_point t) {
@@ -260,15 +260,29 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
   auto np = PR::parameters::check_self_intersections(o.self_intersections)
                            .sampled_hausdorff(!o.full_report)
                            .hausdorff_relative_error_bound(1e-4);
-  // the input's report is made beside the remesh, on its own thread, from a copy of the input (the
-  // remesh may add property maps to the input while it runs); taken when the output's is due
+  // the input's report is made beside the remesh, on its own thread (with one thread, or without
+  // TBB, when it is taken), from a copy of the input (no mesh is read by two threads that may add
+  // property maps to it; cheap insurance across CGAL versions); taken when the output's is due
   const Mesh input_for_report = input;
-  auto input_report = std::async(std::launch::async, [&] { return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np); });
+#ifdef CGAL_LINKED_WITH_TBB
+  const bool beside = thread_count > 1;
+#else
+  const bool beside = false;
+  (void)thread_count;
+#endif
+  auto input_report = std::async(beside ? std::launch::async : std::launch::deferred,
+                                 [&] { return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np); });
   PR::Labelled_quality_reports reports;
   // (the reports against the input reuse its count of crossing pairs, when that count has no
   // degenerate face's pair with itself in it, instead of searching the input again)
   auto against_input = [&] {
-    if(reports.empty()) reports.push_back({"input", input_report.get()});
+    if(reports.empty()) {
+      try {
+        reports.push_back({"input", input_report.get()});
+      } catch(const std::exception& e) {
+        throw std::runtime_error(std::string("the input's quality report: ") + e.what());
+      }
+    }
     const std::size_t input_crossings = reports[0].second.self_intersections_checked && reports[0].second.number_of_degenerate_faces == 0
                                       ? reports[0].second.number_of_self_intersecting_face_pairs : std::size_t(-1);
     return np.reference_self_intersections(input_crossings);

@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <limits>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -66,7 +65,7 @@ struct Fidelity_input_points
   /** reads them from `input` for the tolerance `tol`, unless they were read for it */ void build(const InputMesh& input, double tol)
   {
     if(near && tolerance == tol) return;
-    tolerance = tol;
+    near.reset();   // (valid again only once all of it is read: `tolerance` is set last)
     vertex_points.clear();
     midpoints.clear();
     centroids.clear();
@@ -90,6 +89,7 @@ struct Fidelity_input_points
     for(const auto& x : midpoints) all.push_back(x.first);
     for(const auto& x : centroids) all.push_back(x.first);
     near.emplace(all, tol);
+    tolerance = tol;
   }
 };
 

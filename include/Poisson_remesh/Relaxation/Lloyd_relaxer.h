@@ -314,7 +314,8 @@ private:
   std::function<void(const char*, std::size_t, std::size_t)> progress_;
   Context context_;
   // the input's points that each fidelity pass measures, read at the first (the input does not
-  // change: the remakes' relaxations use them too; relax() is not called from two threads at once)
+  // change: the remakes' relaxations use them too; relax() is not called from two threads at once);
+  // kept while the relaxer lives: about six points per input vertex, and their grid
   mutable Postprocessing::Fidelity_input_points<InputMesh, Point_3> fidelity_points_;
 };
 

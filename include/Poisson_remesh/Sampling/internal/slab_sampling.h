@@ -18,8 +18,9 @@
 //     slab's sampler ("the reach", E +- 2r);
 //   - their disks must be exact in E: geodesic paths no longer than 2r from a point stay within
 //     the ball of radius 2r around it, so the submesh holds every face meeting E +- 4r.
-// Two slabs fill at once only when neither one's reach meets the other's faces; the slabs are
-// made wider, then fewer, until that holds (three at least, else the sequential sampler runs).
+// Two slabs fill at once only when neither one's reach meets the other's faces, and each slab is
+// wide enough for its reach: the thin slabs take the first listed share for which that holds, four
+// slabs are tried before three (three at least, else the sequential sampler runs).
 // Each slab starts with one random seed in its faces when no arc of the boundary is there yet
 // (refused where an earlier sample covers it), so that the slabs start at once instead of waiting
 // for a front to travel over the surface; the final set is maximal whatever the seeds: each slab
@@ -52,9 +53,10 @@ namespace internal {
 /// The settings of the slab decomposition.
 struct Slab_sampling_settings
 {
-  /// The thin slabs' share of the area each, the first that fits: two large slabs fill at once,
-  /// then the thin ones. Each sample within the reach of a slab's border is propagated again by its
-  /// neighbour, so that more slabs (more borders) would cost more than a second thread saves.
+  /// The thin slabs' share of the area each, the first for which every slab is wide enough and the
+  /// slabs of a phase out of each other's reach: two large slabs fill at once, then the thin ones.
+  /// (Each sample within the reach of a slab's border is propagated again by its neighbour: the
+  /// slabs are as few as keep both threads busy in both phases.)
   std::vector<double> thin_shares = {0.06, 0.1, 0.15, 0.2, 0.3};
   /// Four slabs (large, thin, large, thin) where they fit, the two thin ones filling at once;
   /// false: three (large, thin, large), the thin one filling alone.
@@ -182,8 +184,8 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     return slabs;
   };
   // Four slabs where they fit: two large ones that fill at once, then two thin ones, one between
-  // them -- the thinnest that keeps them out of each other's reach -- and one at the far end, at
-  // once too (on two threads neither phase leaves one idle, whatever the thin share). Else three:
+  // them (keeping them out of each other's reach) and one at the far end, at once too (on two
+  // threads neither phase leaves one idle, whatever the thin share). Else three:
   // the two large ones, then the thin one between them alone (its share of the area then runs on
   // one thread).
   std::vector<Slab> layout;
