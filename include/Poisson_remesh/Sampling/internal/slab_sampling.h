@@ -21,9 +21,9 @@
 // Two slabs fill at once only when neither one's reach meets the other's faces, and each slab is
 // wide enough for its reach: the thin slabs take the first listed share for which that holds, four
 // slabs are tried before three (three at least, else the sequential sampler runs).
-// Each slab starts with one random seed in its faces when no arc of the boundary is there yet
+// Each slab starts with one sample drawn in its faces when no arc of the boundary is there yet
 // (refused where an earlier sample covers it), so that the slabs start at once instead of waiting
-// for a front to travel over the surface; the final set is maximal whatever the seeds: each slab
+// for a front to travel over the surface; the final set is maximal wherever they fall: each slab
 // ends with no arc on its faces, and no later sample opens one there.
 
 #ifndef POISSON_REMESH_SAMPLING_INTERNAL_SLAB_SAMPLING_H
