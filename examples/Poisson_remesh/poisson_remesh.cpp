@@ -40,6 +40,10 @@
 
 #include <sys/wait.h>
 #include <unistd.h>
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -270,8 +274,18 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
   const bool beside = false;
   (void)thread_count;
 #endif
-  auto input_report = std::async(beside ? std::launch::async : std::launch::deferred,
-                                 [&] { return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np); });
+  // Beside the remesh, the report's thread runs at the lowest priority (Linux): it takes the
+  // cores the remesh leaves idle (its sequential steps), not a share of those its parallel loops
+  // use; and it runs sequentially, so that it sends no work to TBB's threads
+  auto input_report = std::async(beside ? std::launch::async : std::launch::deferred, [&] {
+    if(beside) {
+#ifdef __linux__
+      setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19);   // (per thread on Linux; on failure, as before)
+#endif
+      return PR::quality_report<CGAL::Sequential_tag>(input_for_report, np);
+    }
+    return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np);
+  });
   PR::Labelled_quality_reports reports;
   // (the reports against the input reuse its count of crossing pairs, when that count has no
   // degenerate face's pair with itself in it, instead of searching the input again)
