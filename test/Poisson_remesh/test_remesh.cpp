@@ -10,6 +10,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Polyhedron_items_with_id_3.h>
@@ -475,6 +476,54 @@ TEST_CASE("the whole remesher runs on Polyhedron_3 and keeps a cube's corners an
        std::abs(std::abs(p.z() - 0.5) - 0.5) < 1e-12) ++corners;
   }
   CHECK(corners == 8);
+}
+
+TEST_CASE("a tetrahedron is remeshed along its six creases: about the vertices asked for, no triangle under 30 degrees", "[remesh][features]")
+{
+  // every face of a tetrahedron is one triangle whose three edges are creases (see the features
+  // test of coarse polyhedra); when they were lost, 50 vertices asked gave 1,753 and a smallest
+  // angle of 4.8 degrees (and minutes of repair)
+  std::vector<Point> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  std::vector<std::vector<std::size_t>> polygons = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  Mesh in;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, in);
+  for(const std::size_t asked : {std::size_t(50), std::size_t(300)}) {
+    INFO("asked " << asked);
+    Mesh out;
+    PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(asked).random_seed(1u));
+    CHECK(double(num_vertices(out)) > 0.75 * double(asked));
+    CHECK(double(num_vertices(out)) < 1.25 * double(asked));
+    CHECK(CGAL::is_closed(out));
+    CHECK(vertices_off_input(out, in) < 1e-9);
+    // the smallest angle, computed here
+    double smallest = 180;
+    for(auto f : faces(out)) {
+      const auto h = halfedge(f, out);
+      const Point p[3] = {out.point(source(h, out)), out.point(target(h, out)), out.point(target(next(h, out), out))};
+      for(int i = 0; i < 3; ++i) {
+        const K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+        smallest = std::min(smallest, std::acos(CGAL::to_double(u * v) / std::sqrt(CGAL::to_double(u.squared_length() * v.squared_length()))) * 180 / CGAL_PI);
+      }
+    }
+    CHECK(smallest >= 30);
+    // the corners kept, and every edge of the output that lies along a crease of the tetrahedron
+    // (both ends on one of its edges) makes the creases' whole length
+    std::size_t corners = 0;
+    for(auto v : vertices(out))
+      for(const Point& c : points) if(CGAL::squared_distance(out.point(v), c) < 1e-24) ++corners;
+    CHECK(corners == 4);
+    auto on_segment = [](const Point& x, const Point& a, const Point& b) {
+      return CGAL::squared_distance(x, K::Segment_3(a, b)) < 1e-20;
+    };
+    double along = 0;
+    for(auto e : edges(out)) {
+      const Point a = out.point(source(halfedge(e, out), out)), b = out.point(target(halfedge(e, out), out));
+      for(std::size_t i = 0; i < 4; ++i)
+        for(std::size_t j = i + 1; j < 4; ++j)
+          if(on_segment(a, points[i], points[j]) && on_segment(b, points[i], points[j])) along += std::sqrt(CGAL::to_double(CGAL::squared_distance(a, b)));
+    }
+    CHECK(along == Approx(3 + 3 * std::sqrt(2.)).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("the remakes (regrading) run on Polyhedron_3 too, the same in every run of a seed", "[remesh][polyhedron][regrading][determinism]")

@@ -27,6 +27,7 @@
 #include <complex>
 #include <map>
 #include <random>
+#include <tuple>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Point_3 Point;
@@ -65,6 +66,35 @@ TEST_CASE("features of a cube: 8 corners, 12 straight curves", "[features]")
       }
       CHECK(on_face == 2);
       CHECK(third == 1);
+    }
+  }
+}
+
+TEST_CASE("features of coarse polyhedra: every edge of a tetrahedron and an octahedron is a crease between corners", "[features]")
+{
+  // each face is one triangle, so all three of its edges are creases: the rule that breaks such a
+  // crease cycle dropped an edge of every face, and the dangling chains left went too -- a
+  // tetrahedron was then sampled as a smooth surface (tens of times the vertices asked for)
+  auto mesh_of = [](std::vector<Point> points, std::vector<std::vector<std::size_t>> faces) {
+    Mesh m;
+    PMP::polygon_soup_to_polygon_mesh(points, faces, m);
+    return m;
+  };
+  const Mesh tetrahedron = mesh_of({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}});
+  const Mesh octahedron = mesh_of({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                                  {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+  for(const auto& [name, m, edges_expected, corners_expected] :
+      {std::make_tuple("tetrahedron", &tetrahedron, std::size_t(6), std::size_t(4)), std::make_tuple("octahedron", &octahedron, std::size_t(12), std::size_t(6))}) {
+    INFO(name);
+    // at the scale of a remesh to the input's vertex count, and to ten times as many
+    const double r = PR::internal::sampling_radius_from_parameters(*m, get(CGAL::vertex_point, *m), PR::parameters::default_values());
+    for(const double scale : {r, r / std::sqrt(10.)}) {
+      const auto fs = PR::detect_features(*m, PR::parameters::minimum_feature_length(PR::feature_length_in_radii * scale));
+      CHECK(fs.number_of_feature_edges == edges_expected);
+      CHECK(fs.corners.size() == corners_expected);
+      CHECK(fs.curves.size() == edges_expected);
+      CHECK(fs.number_of_tips == 0);
+      for(auto v : vertices(*m)) CHECK(fs.is_corner(v));
     }
   }
 }

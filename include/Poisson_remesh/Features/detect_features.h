@@ -310,8 +310,23 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
     for(edge_descriptor e : edges(tm))
       if(fs.feature_edge[eidx(e)] && !keep[eidx(e)]) { fs.feature_edge[eidx(e)] = false; ++fs.number_of_removed_false_features; }
     // a face whose three edges are creases is a crease cycle no output edge can follow (the
-    // tessellation would merge two of its curves): its least sharp edge is dropped
+    // tessellation would merge two of its curves): its least sharp edge is dropped -- unless every
+    // edge at each of its vertices is a crease, three at least: the face is then a facet of a
+    // coarse polyhedron (a tetrahedron, an octahedron), its vertices corners and each side a curve
+    // of its own between two of them, and it may be a triangle of the output (dropping an edge of
+    // each such face dropped the creases of the whole polyhedron, which was then sampled as a
+    // smooth surface with three pointed tips)
+    std::vector<std::size_t> creases(num_vertices(tm), 0);
+    for(edge_descriptor e : edges(tm))
+      if(fs.feature_edge[eidx(e)] && !border_edge[eidx(e)]) {
+        ++creases[vidx(source(halfedge(e, tm), tm))];
+        ++creases[vidx(target(halfedge(e, tm), tm))];
+      }
     for(face_descriptor f : faces(tm)) {
+      bool between_corners = true;
+      for(halfedge_descriptor g : CGAL::halfedges_around_face(halfedge(f, tm), tm))
+        between_corners = between_corners && creases[vidx(target(g, tm))] >= 3 && creases[vidx(target(g, tm))] == degree(target(g, tm), tm);
+      if(between_corners) continue;
       halfedge_descriptor least = GT::null_halfedge();
       double least_cos = -2;
       std::size_t sharp = 0;
@@ -325,7 +340,12 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
         const double c = l1 > 0 && l2 > 0 ? CGAL::to_double(n1 * n2) / (l1 * l2) : 1;
         if(c > least_cos) { least_cos = c; least = g; }
       }
-      if(sharp == 3) { fs.feature_edge[eidx(edge(least, tm))] = false; ++fs.number_of_removed_false_features; }
+      if(sharp == 3) {
+        fs.feature_edge[eidx(edge(least, tm))] = false;
+        ++fs.number_of_removed_false_features;
+        --creases[vidx(source(least, tm))];
+        --creases[vidx(target(least, tm))];
+      }
     }
   }
 
