@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <map>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -34,6 +35,9 @@ class Face_box_grid
 {
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   struct Entry { CGAL::Bbox_3 box; std::vector<std::uint64_t> keys; bool big = false; };
+  // (the cells and the list of big faces hold each face's box beside it: a query then reads no
+  // entry, whose lookup in the map cost more than the box test itself)
+  typedef std::pair<face_descriptor, CGAL::Bbox_3> Filed;
 
 public:
   /// `boxes(f)`: the box of face f; the cell side is the mean of the boxes' largest extents
@@ -65,8 +69,8 @@ public:
   /// particular order and possibly more than once
   void overlapping(const CGAL::Bbox_3& b, std::vector<face_descriptor>& out) const
   {
-    for(face_descriptor g : big_)
-      if(CGAL::do_overlap(entries_.at(g).box, b)) out.push_back(g);
+    for(const Filed& g : big_)
+      if(CGAL::do_overlap(g.second, b)) out.push_back(g.first);
     // (a query box may cover as many cells as there are faces: walking them costs about what a
     // scan of every face does)
     std::int64_t lo[3], hi[3];
@@ -80,8 +84,8 @@ public:
         for(std::int64_t z = lo[2]; z <= hi[2]; ++z) {
           const auto it = cells_.find(key(x, y, z));
           if(it == cells_.end()) continue;
-          for(face_descriptor g : it->second)
-            if(CGAL::do_overlap(entries_.at(g).box, b)) out.push_back(g);
+          for(const Filed& g : it->second)
+            if(CGAL::do_overlap(g.second, b)) out.push_back(g.first);
         }
   }
 
@@ -111,13 +115,13 @@ private:
     e.keys.clear();
     std::int64_t lo[3], hi[3];
     e.big = !range(b, lo, hi);
-    if(e.big) { big_.push_back(f); return; }
+    if(e.big) { big_.push_back({f, b}); return; }
     for(std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for(std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for(std::int64_t z = lo[2]; z <= hi[2]; ++z) e.keys.push_back(key(x, y, z));
     std::sort(e.keys.begin(), e.keys.end());
     e.keys.erase(std::unique(e.keys.begin(), e.keys.end()), e.keys.end());
-    for(std::uint64_t k : e.keys) cells_[k].push_back(f);
+    for(std::uint64_t k : e.keys) cells_[k].push_back({f, b});
   }
 public:
   /// f is no longer a face (or no longer to be found)
@@ -126,10 +130,11 @@ public:
     const auto it = entries_.find(f);
     if(it == entries_.end()) return;
     Entry& e = it->second;
-    if(e.big) big_.erase(std::find(big_.begin(), big_.end(), f));
+    auto is_f = [&](const Filed& g) { return g.first == f; };
+    if(e.big) big_.erase(std::find_if(big_.begin(), big_.end(), is_f));
     for(std::uint64_t k : e.keys) {
-      std::vector<face_descriptor>& c = cells_[k];
-      c.erase(std::find(c.begin(), c.end(), f));
+      std::vector<Filed>& c = cells_[k];
+      c.erase(std::find_if(c.begin(), c.end(), is_f));
     }
     e.keys.clear();
     entries_.erase(it);
@@ -138,8 +143,8 @@ public:
 private:
   double cell_ = 1;
   std::map<face_descriptor, Entry> entries_;
-  std::unordered_map<std::uint64_t, std::vector<face_descriptor>> cells_;
-  std::vector<face_descriptor> big_;
+  std::unordered_map<std::uint64_t, std::vector<Filed>> cells_;
+  std::vector<Filed> big_;
 };
 
 /// The faces near a region of a mesh that changes only there, for intersecting_pairs_near's
