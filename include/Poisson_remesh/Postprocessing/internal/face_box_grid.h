@@ -36,7 +36,7 @@ class Face_box_grid
   typedef typename boost::graph_traits<Mesh>::face_descriptor face_descriptor;
   struct Entry { CGAL::Bbox_3 box; std::vector<std::uint64_t> keys; bool big = false; };
   // (the cells and the list of big faces hold each face's box beside it: a query then reads no
-  // entry, whose lookup in the map cost more than the box test itself)
+  // entry, whose lookup from the map cost more than the box test itself)
   typedef std::pair<face_descriptor, CGAL::Bbox_3> Filed;
 
 public:
