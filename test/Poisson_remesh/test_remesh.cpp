@@ -526,6 +526,28 @@ TEST_CASE("a tetrahedron is remeshed along its six creases: about the vertices a
   }
 }
 
+TEST_CASE("the fidelity splits along a curve make no flat triangle (elk at three times its count)", "[remesh][fidelity]")
+{
+  // a chord of a feature curve split at the curve's point nearest its midpoint, when that point
+  // lay on the straight input edge from an end of the chord to the opposite vertex, made a flat
+  // triangle (4.5e-15 degrees) that no move along the curve could open
+  Mesh in;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elk.off"), in);
+  Mesh out;
+  PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(3 * num_vertices(in)).random_seed(1u));
+  double smallest = 180;
+  for(auto f : faces(out)) {
+    const auto h = halfedge(f, out);
+    const Point p[3] = {out.point(source(h, out)), out.point(target(h, out)), out.point(target(next(h, out), out))};
+    for(int i = 0; i < 3; ++i) {
+      const K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+      smallest = std::min(smallest, std::acos(CGAL::to_double(u * v) / std::sqrt(CGAL::to_double(u.squared_length() * v.squared_length()))) * 180 / CGAL_PI);
+    }
+  }
+  CHECK(smallest > 10);
+  CHECK(CGAL::is_closed(out));
+}
+
 TEST_CASE("the remakes (regrading) run on Polyhedron_3 too, the same in every run of a seed", "[remesh][polyhedron][regrading][determinism]")
 {
   // femur folds at every seed the first time (RESULTS.md, Development notes: remakes): the remakes copy the best result
