@@ -44,6 +44,21 @@ double vertices_off_input(const Mesh& out, const Mesh& in)
   return worst / PR::quality_report(in, PR::parameters::check_self_intersections(false)).bbox_diagonal;
 }
 
+// the smallest angle of m's triangles in degrees, computed here (not by the package's report)
+double smallest_angle_degrees(const Mesh& m)
+{
+  double smallest = 180;
+  for(auto f : faces(m)) {
+    const auto h = halfedge(f, m);
+    const Point p[3] = {m.point(source(h, m)), m.point(target(h, m)), m.point(target(next(h, m), m))};
+    for(int i = 0; i < 3; ++i) {
+      const K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
+      smallest = std::min(smallest, std::acos(CGAL::to_double(u * v) / std::sqrt(CGAL::to_double(u.squared_length() * v.squared_length()))) * 180 / CGAL_PI);
+    }
+  }
+  return smallest;
+}
+
 double longest_edge(const Mesh& m)
 {
   double longest = 0;
@@ -495,17 +510,8 @@ TEST_CASE("a tetrahedron is remeshed along its six creases: about the vertices a
     CHECK(double(num_vertices(out)) < 1.25 * double(asked));
     CHECK(CGAL::is_closed(out));
     CHECK(vertices_off_input(out, in) < 1e-9);
-    // the smallest angle, computed here
-    double smallest = 180;
-    for(auto f : faces(out)) {
-      const auto h = halfedge(f, out);
-      const Point p[3] = {out.point(source(h, out)), out.point(target(h, out)), out.point(target(next(h, out), out))};
-      for(int i = 0; i < 3; ++i) {
-        const K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-        smallest = std::min(smallest, std::acos(CGAL::to_double(u * v) / std::sqrt(CGAL::to_double(u.squared_length() * v.squared_length()))) * 180 / CGAL_PI);
-      }
-    }
-    CHECK(smallest >= 30);
+    // the smallest angle, computed by the test itself
+    CHECK(smallest_angle_degrees(out) >= 30);
     // the corners kept, and every edge of the output that lies along a crease of the tetrahedron
     // (both ends on one of its edges) makes the creases' whole length
     std::size_t corners = 0;
@@ -535,16 +541,7 @@ TEST_CASE("the fidelity splits along a curve make no flat triangle (elk at three
   PR::read_surface_mesh(test_support::data_mesh("meshes/elk.off"), in);
   Mesh out;
   PR::poisson_remesh(in, out, PR::parameters::target_vertex_count(3 * num_vertices(in)).random_seed(1u));
-  double smallest = 180;
-  for(auto f : faces(out)) {
-    const auto h = halfedge(f, out);
-    const Point p[3] = {out.point(source(h, out)), out.point(target(h, out)), out.point(target(next(h, out), out))};
-    for(int i = 0; i < 3; ++i) {
-      const K::Vector_3 u = p[(i + 1) % 3] - p[i], v = p[(i + 2) % 3] - p[i];
-      smallest = std::min(smallest, std::acos(CGAL::to_double(u * v) / std::sqrt(CGAL::to_double(u.squared_length() * v.squared_length()))) * 180 / CGAL_PI);
-    }
-  }
-  CHECK(smallest > 10);
+  CHECK(smallest_angle_degrees(out) > 10);
   CHECK(CGAL::is_closed(out));
 }
 

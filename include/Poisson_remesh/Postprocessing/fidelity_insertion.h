@@ -302,7 +302,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // itself nowhere new and turns no triangle by more than acos(min_cos) from both old ones
   // (`on_curve`: the edge follows a border or a feature curve, and so does the new vertex; x is
   // then the edge's halfedge in a triangle)
-  const double flat_angle = 1e-6;   // radians: a triangle with no larger angle is a segment to rounding
+  const double flat_angle = 1e-6;   // radians: a face with no larger angle is a segment to rounding
   auto try_split = [&](const Point_3& p, const std::vector<std::pair<double, halfedge_descriptor>>& order, double min_cos, bool on_curve) {
     for(const auto& candidate : order) {
       const auto x = candidate.second;
@@ -316,10 +316,10 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
         if(is_border(h, m)) continue;
         const Vector_3 n = ctx.normal(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m)));
         ok = ok && (ctx.cos_between(n, n1) >= min_cos || ctx.cos_between(n, n2) >= min_cos);
-        // nor a flat triangle: p on the line of a triangle's other two vertices (a curve's point
-        // on the straight input edge between an end of the edge and the opposite vertex), which
-        // no later move along the curve can open (the rounding of the normal's direction let it
-        // through the test above)
+        // nor a flat face: the new point on the line of a face's other two vertices (a curve's
+        // point on the straight input edge between an end of the edge and the opposite vertex),
+        // which no later move along the curve can open (the rounding of the normal's direction
+        // let it through the test above)
         ok = ok && ctx.min_angle(get(vpm, source(h, m)), p, get(vpm, target(next(h, m), m))) > flat_angle;
       }
       // (every crossing of a triangle at v is new; `before` is not used here: its face indices
