@@ -276,15 +276,13 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
 #endif
   // Beside the remesh, the report's thread runs at the lowest priority (Linux): it takes the
   // cores the remesh leaves idle (its sequential steps), not a share of those its parallel loops
-  // use; and it runs sequentially, so that it sends no work to TBB's threads
+  // use. It runs sequentially, so that it sends no work to TBB's threads (when it is not beside,
+  // there is one thread anyway)
   auto input_report = std::async(beside ? std::launch::async : std::launch::deferred, [&] {
-    if(beside) {
 #ifdef __linux__
-      setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19);   // (per thread on Linux; on failure, as before)
+    if(beside) setpriority(PRIO_PROCESS, id_t(syscall(SYS_gettid)), 19);   // (per thread on Linux; on failure, as before)
 #endif
-      return PR::quality_report<CGAL::Sequential_tag>(input_for_report, np);
-    }
-    return PR::quality_report<CGAL::Parallel_if_available_tag>(input_for_report, np);
+    return PR::quality_report<CGAL::Sequential_tag>(input_for_report, np);
   });
   PR::Labelled_quality_reports reports;
   // (the reports against the input reuse its count of crossing pairs, when that count has no

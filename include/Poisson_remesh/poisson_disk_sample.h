@@ -305,8 +305,8 @@ struct Poisson_disk_sampler
   (large, thin, large, thin), or three where four do not fit (large, thin, large), which fill on
   TBB's threads in two phases, each slab once: the large ones at once, then the thin ones
   (`Poisson_disk_sampling_result::statistics.slabs` tells how many). The set is as maximal and as
-  separated as the sequential one, but another one: it depends on the seed and not on the number
-  of threads. A surface too short for three slabs at its sampling radius (fewer than about 25
+  separated as the sequential one, but another one, the same for any number of
+  threads. A surface too short for three slabs at its sampling radius (fewer than about 25
   spacings along its longest side), or a user's `geodesic_oracle`, is sampled sequentially.
 */
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
