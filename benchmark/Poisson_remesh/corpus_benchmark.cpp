@@ -26,6 +26,7 @@
 // usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices N] [--max-vertices N]
 //            [--seed S] [--jobs N] [--timeout SECONDS] [--peer-iterations N] [--peer-sharp-angle DEG]
 //            [--calibrate N] [--ablation all|op,op] [--markdown FILE] [--json FILE] [--save-meshes DIR] [--iterations K]
+//            [--remakes K]
 #include "benchmark_support.h"
 #include "isotropic_remeshing_peer.h"
 #include <Poisson_remesh/poisson_remesh.h>
@@ -157,6 +158,7 @@ struct Options
   double factor = 1;   // --factor: the target vertex count over the input's
   PR::Curvature_density curvature;   // --gamma, --edge-ratio: the adaptive contender's density
   unsigned int iterations = 0;   // --iterations: ours's relaxation rounds (0: the library's default)
+  int remakes = -1;              // --remakes: ours's whole remakes at most (-1: the library's default)
   std::string save_meshes;   // --save-meshes: the folder each contender's output is written to (empty: none)
 };
 static Options options;
@@ -182,7 +184,7 @@ static Figures run_contender(const std::string& contender, const std::string& me
     PR::Relaxation_settings settings;
     if(options.iterations > 0) settings.iterations = options.iterations;
     bool grading = true;
-    unsigned int remakes = 6;
+    unsigned int remakes = options.remakes >= 0 ? unsigned(options.remakes) : 6;
     // ours-local: the remakes of the regions at fault alone (local_remakes), calibrated like ours
     const bool local = contender == "ours-local";
     // ours-adaptive: the curvature density with its defaults, and the library's defaults for it
@@ -503,6 +505,7 @@ int main(int argc, char** argv)
       else if(a == "--contenders") contenders = split(value());
       else if(a == "--save-meshes") options.save_meshes = value();
       else if(a == "--iterations") options.iterations = unsigned(std::stoul(value()));
+      else if(a == "--remakes") options.remakes = int(std::stoul(value()));
       else if(a == "--ablation") {
         const std::string v = value();
         if(v == "all") for(const Operator& op : operators()) ablated.push_back(op.name);
@@ -520,6 +523,7 @@ int main(int argc, char** argv)
                      "         [--calibrate 3] [--ablation all|op,op] [--markdown FILE] [--json FILE]\n"
                      "         [--merge A.json,B.json] [--factor 1] [--adaptive [--gamma 1] [--edge-ratio 5]]\n"
                      "         [--contenders cgal,ours,...] [--save-meshes DIR] [--iterations K]\n"
+                     "         [--remakes K]\n"
                      "Remeshes every CGAL data mesh within the vertex range at its own vertex count, ours beside\n"
                      "CGAL's isotropic_remeshing, judges the floor, and with --ablation reruns ours with each\n"
                      "step beyond the paper switched off. --merge tables the rows of earlier runs' JSON files\n"
@@ -531,7 +535,8 @@ int main(int argc, char** argv)
                      "ours-adaptive, ours-local: the remakes of the regions at fault alone, ours-<step>), to\n"
                      "--merge with other runs. --save-meshes DIR writes each output as DIR/<mesh>_<contender>.off\n"
                      "(the kept calibration run; DIR must exist). --iterations K: our relaxation's Lloyd rounds\n"
-                     "(Relaxation_settings::iterations; default: the library's). The steps:\n";
+                     "(Relaxation_settings::iterations; default: the library's). --remakes K: our whole remakes\n"
+                     "at most (regrading_attempts; default: the library's, 6). The steps:\n";
         for(const Operator& op : operators()) std::cout << "  " << op.name << ": " << op.what << "\n";
         return 0;
       }
