@@ -232,6 +232,41 @@ TEST_CASE("sliver collapse: a sliver between two pinned vertices closer than the
   }
 }
 
+TEST_CASE("Lloyd guard: a Lloyd move that would make a triangle sharper than the guard's angle goes half the way", "[operators][guard]")
+{
+  // a free vertex whose ring is lopsided (two neighbours pushed towards it, all else fixed): its
+  // Lloyd target -- the area-weighted centroid of its triangles' centroids -- lies where one of its
+  // triangles would have a smallest angle of 19.2 degrees, against 30.0 now; half the way, 25.1
+  const Mesh in = square(24);
+  const auto features = PR::detect_features(in);
+  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  for(bool on : {false, true}) {
+    INFO("Lloyd guard " << (on ? "on" : "off"));
+    Mesh m = square(6);
+    const V v = vertex_at(m, 3.0 / 6, 3.0 / 6);
+    m.point(vertex_at(m, 4.0 / 6, 3.0 / 6)) = Point(3.92 / 6, 3.13 / 6, 0);
+    m.point(vertex_at(m, 4.0 / 6, 4.0 / 6)) = Point(4.15 / 6, 3.63 / 6, 0);
+    m.point(v) = Point(3.21 / 6, 3.31 / 6, 0);
+    REQUIRE(no_fold_in_plane(m));
+    auto star_min = [&] {
+      double worst = 180;
+      for(auto h : CGAL::halfedges_around_target(v, m)) worst = std::min(worst, smallest_angle(face(h, m), m));
+      return worst;
+    };
+    const Point start = m.point(v);
+    REQUIRE(star_min() > 29.9);
+    PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
+    if(on) s.lloyd_guard = P::Lloyd_guard_settings();
+    REQUIRE((!on || s.lloyd_guard.min_angle == 25));
+    relaxer.relax(m, no_feature, [&](V x) { return x != v; }, s);
+    CHECK(m.point(v) != start);
+    CHECK(std::abs(m.point(v).z()) < 1e-12);
+    CHECK(no_fold_in_plane(m));
+    if(on) CHECK(star_min() >= 25);
+    else CHECK(star_min() < 20);
+  }
+}
+
 TEST_CASE("fidelity insertions: a crest finer than the spacing, cut across by the mesh, is put back", "[operators][fidelity]")
 {
   // the input: a square with a narrow ridge along x = 1/2; the mesh: a coarse grid of points of
