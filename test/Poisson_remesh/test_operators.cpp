@@ -146,6 +146,18 @@ Mesh square(std::size_t n)
   return s.to_mesh<Mesh>();
 }
 
+// the input of the tests that relax a piece of the plane: a square of n x n cells, its features
+// and the relaxer on them (which keeps references to both: not copied)
+struct Square_input
+{
+  Mesh in;
+  PR::Feature_set<Mesh> features;
+  PR::Lloyd_relaxer<Mesh, K> relaxer;
+  explicit Square_input(std::size_t n) : in(square(n)), features(PR::detect_features(in)), relaxer(in, features) {}
+  Square_input(const Square_input&) = delete;
+  Square_input& operator=(const Square_input&) = delete;
+};
+
 V vertex_at(const Mesh& m, double x, double y)
 {
   V best = *vertices(m).begin();
@@ -198,9 +210,7 @@ struct Counting_new_vertex
 
 TEST_CASE("sliver collapse: a sliver between two pinned vertices closer than the spacing goes", "[operators][collapse]")
 {
-  const Mesh in = square(20);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const Square_input plane(20);
   for(bool on : {false, true}) {
     INFO("sliver collapse " << (on ? "on" : "off"));
     Mesh m = square(6);
@@ -215,7 +225,7 @@ TEST_CASE("sliver collapse: a sliver between two pinned vertices closer than the
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     s.sliver_collapse.enabled = on;
     REQUIRE(no_fold_in_plane(m));
-    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s);
+    const auto stats = plane.relaxer.relax(m, no_feature, [](V) { return true; }, s);
     m.collect_garbage();
     CHECK(euler_characteristic(m) == chi);
     CHECK(border_cycles(m) == 1);
@@ -237,9 +247,7 @@ TEST_CASE("Lloyd guard: a Lloyd move that would make a triangle sharper than the
   // a free vertex whose ring is lopsided (two neighbours pushed towards it, all else fixed): its
   // Lloyd target -- the area-weighted centroid of its triangles' centroids -- lies where one of its
   // triangles would have a smallest angle of 19.2 degrees, against 30.0 now; half the way, 25.1
-  const Mesh in = square(24);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const Square_input plane(24);
   for(bool on : {false, true}) {
     INFO("Lloyd guard " << (on ? "on" : "off"));
     Mesh m = square(6);
@@ -258,7 +266,7 @@ TEST_CASE("Lloyd guard: a Lloyd move that would make a triangle sharper than the
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.lloyd_guard = P::Lloyd_guard_settings();
     REQUIRE((!on || s.lloyd_guard.min_angle == 25));
-    relaxer.relax(m, no_feature, [&](V x) { return x != v; }, s);
+    plane.relaxer.relax(m, no_feature, [&](V x) { return x != v; }, s);
     CHECK(m.point(v) != start);
     CHECK(std::abs(m.point(v).z()) < 1e-12);
     CHECK(no_fold_in_plane(m));
@@ -637,9 +645,7 @@ TEST_CASE("angle smoothing: a free vertex climbs the gradient of its ring's smal
 
 TEST_CASE("regularity flips: a grid with one diagonal turned gets its valence-6 vertices back", "[operators][regularity]")
 {
-  const Mesh in = square(24);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const Square_input plane(24);
   for(bool on : {false, true}) {
     INFO("regularity flips " << (on ? "on" : "off"));
     Mesh m = square(6);
@@ -651,7 +657,7 @@ TEST_CASE("regularity flips: a grid with one diagonal turned gets its valence-6 
     REQUIRE(irregular(m) == regular + 4);
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.regularity.rounds = 4;
-    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s);
+    const auto stats = plane.relaxer.relax(m, no_feature, [](V) { return true; }, s);
     CHECK(no_fold_in_plane(m));
     if(on) {
       CHECK(stats.valence_flips >= 1);
@@ -687,9 +693,7 @@ void check_still_the_flat_square(Mesh& m, long chi)
 
 TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a removal or a new vertex", "[operators][refinement]")
 {
-  const Mesh in = square(24);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const Square_input plane(24);
   for(bool on : {false, true}) {
     INFO("refinement " << (on ? "on" : "off"));
     // every vertex pinned: only a change of connectivity can mend the triangles
@@ -700,7 +704,7 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.refinement.rounds = 3;
     std::vector<std::pair<V, bool>> added;
-    const auto stats = relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
+    const auto stats = plane.relaxer.relax(m, no_feature, [](V) { return true; }, s, Counting_new_vertex{&added});
     check_still_the_flat_square(m, chi);
     INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
     if(on) {
@@ -716,9 +720,7 @@ TEST_CASE("refinement: a sharp triangle at pinned vertices gets a flip, a remova
 
 TEST_CASE("local repair: a sharp triangle at vertices that may not move gets the change that, with the moves after it, raises its region", "[operators][repair]")
 {
-  const Mesh in = square(24);
-  const auto features = PR::detect_features(in);
-  PR::Lloyd_relaxer<Mesh, K> relaxer(in, features);
+  const Square_input plane(24);
   for(bool on : {false, true}) {
     INFO("local repair " << (on ? "on" : "off"));
     // every vertex of the grid is fixed (only the vertices a change adds may move): a flip or a
@@ -733,7 +735,7 @@ TEST_CASE("local repair: a sharp triangle at vertices that may not move gets the
     PR::Relaxation_settings s = nothing_but_the_last_lloyd_pass();
     if(on) s.local_repair.rounds = 4;
     std::vector<std::pair<V, bool>> added;
-    const auto stats = relaxer.relax(m, no_feature, fixed, s, Counting_new_vertex{&added});
+    const auto stats = plane.relaxer.relax(m, no_feature, fixed, s, Counting_new_vertex{&added});
     check_still_the_flat_square(m, chi);
     INFO("smallest angle " << worst << " -> " << min_angle(m) << ", triangles under 30: " << sharp << " -> " << count_below(m, 30));
     if(on) {
