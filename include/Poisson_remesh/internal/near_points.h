@@ -96,7 +96,7 @@ public:
   /// whether a point lies within `d` (<= the cell) of `p`
   bool within(const Point_3& p, double d) const
   {
-    return any_near(p, [&](double d2) { return d2 <= d * d; });
+    return any_near(p, [&](double d2) { return d2 <= d * d; }, d);
   }
   /// whether a point lies within `d` (<= the cell) of the triangle (a, b, c)
   template <class Triangle_3>
@@ -122,17 +122,23 @@ private:
   const Slot* find(const Cell& c) const
   {
     if(table_.empty()) return nullptr;
-    for(std::size_t h = hash(c) & mask_; table_[h].end != 0; h = (h + 1) & mask_)
-      if(table_[h].cell == c) return &table_[h];
+    // (the cells compared coordinate by coordinate: std::array's == calls memcmp)
+    for(std::size_t h = hash(c) & mask_; table_[h].end != 0; h = (h + 1) & mask_) {
+      const Cell& k = table_[h].cell;
+      if(k[0] == c[0] && k[1] == c[1] && k[2] == c[2]) return &table_[h];
+    }
     return nullptr;
   }
   // stop(d2) for the squared distance d2 from p to each point of p's cell and of the 26 around it
   // (its own cell first: the likeliest to hold what is looked for), until stop returns true;
-  // returns whether it did
+  // returns whether it did. With `reach` (<= the cell), the cells farther than it from p are
+  // passed over: stop must then return true for no point farther than `reach` (their points are
+  // all farther)
   template <class Stop>
-  bool any_near(const Point_3& p, Stop stop) const
+  bool any_near(const Point_3& p, Stop stop, double reach = std::numeric_limits<double>::infinity()) const
   {
-    const Cell c = cell_of(p);
+    const double x[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    const Cell c = cell_of(x[0], x[1], x[2]);
     auto in = [&](const Cell& k) {
       const Slot* s = find(k);
       if(s == nullptr) return false;
@@ -141,10 +147,27 @@ private:
       return false;
     };
     if(in(c)) return true;
+    // the squared distance from p to the neighbouring cells' slabs along each axis, at least:
+    // below (0) and above (2) its own cell's, 0 within it (1). A cell's points have
+    // floor(coordinate / cell) equal to its index, which rounding may give to a point a few ulps
+    // across the bound index * cell: the distances are shortened by that much (`slack`)
+    double gap[3][3];
+    for(int k = 0; k < 3; ++k) {
+      const double bound_low = double(c[k]) * cell_, bound_high = double(c[k] + 1) * cell_;
+      const double slack = 16 * std::numeric_limits<double>::epsilon() * (std::abs(x[k]) + std::abs(bound_low) + std::abs(bound_high));
+      const double low = x[k] - bound_low - slack, high = bound_high - x[k] - slack;
+      gap[k][0] = low > 0 ? low * low : 0;
+      gap[k][1] = 0;
+      gap[k][2] = high > 0 ? high * high : 0;
+    }
+    const double bound = reach * reach;
     for(long long dx = -1; dx <= 1; ++dx)
-      for(long long dy = -1; dy <= 1; ++dy)
+      for(long long dy = -1; dy <= 1; ++dy) {
+        const double gxy = gap[0][dx + 1] + gap[1][dy + 1];
+        if(gxy > bound) continue;
         for(long long dz = -1; dz <= 1; ++dz)
-          if((dx != 0 || dy != 0 || dz != 0) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
+          if((dx != 0 || dy != 0 || dz != 0) && !(gxy + gap[2][dz + 1] > bound) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
+      }
     return false;
   }
   Cell cell_of(double x, double y, double z) const
