@@ -131,9 +131,9 @@ private:
   }
   // stop(d2) for the squared distance d2 from p to each point of p's cell and of the 26 around it
   // (its own cell first: the likeliest to hold what is looked for), until stop returns true;
-  // returns whether it did. With `reach` (<= the cell), the cells farther than it from p are
-  // passed over: stop must then return true for no point farther than `reach` (their points are
-  // all farther)
+  // returns whether it did. With `reach` (<= the cell), the cells farther than `reach` from the
+  // point asked about are passed over: stop must then return true for no point farther than
+  // `reach` (their points are all farther)
   template <class Stop>
   bool any_near(const Point_3& p, Stop stop, double reach = std::numeric_limits<double>::infinity()) const
   {
@@ -147,10 +147,10 @@ private:
       return false;
     };
     if(in(c)) return true;
-    // the squared distance from p to the neighbouring cells' slabs along each axis, at least:
-    // below (0) and above (2) its own cell's, 0 within it (1). A cell's points have
-    // floor(coordinate / cell) equal to its index, which rounding may give to a point a few ulps
-    // across the bound index * cell: the distances are shortened by that much (`slack`)
+    // the squared distance from the point asked about to the neighbouring cells' slabs along
+    // each axis, at least: below (0) and above (2) its own cell's, 0 within it (1). A cell's
+    // points have floor(coordinate / cell) equal to its index, which rounding may give to a point
+    // a few ulps across the bound index * cell: the distances are shortened by that much (`slack`)
     double gap[3][3];
     for(int k = 0; k < 3; ++k) {
       const double bound_low = double(c[k]) * cell_, bound_high = double(c[k] + 1) * cell_;
