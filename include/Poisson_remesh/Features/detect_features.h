@@ -312,10 +312,9 @@ Feature_set<TriangleMesh> detect_features(const TriangleMesh& tm, const NamedPar
     // a face whose three edges are creases is a crease cycle no output edge can follow (the
     // tessellation would merge two of its curves): its least sharp edge is dropped -- unless every
     // edge at each of its vertices is a crease, three at least: the face is then a facet of a
-    // coarse polyhedron (of four faces, say), its vertices corners and each side a curve of its
-    // own between two of them, and it may be a face of the output (dropping an edge of each such
-    // face dropped the creases of the whole polyhedron, which was then sampled as a smooth
-    // surface with three pointed tips)
+    // coarse polyhedron, each of its vertices the meeting point of three curves or more and each
+    // side a curve of its own between two of them, and it may be a face of the output (dropping
+    // one edge of every such face would break all of the polyhedron's curves)
     std::vector<std::size_t> creases(num_vertices(tm), 0);
     for(edge_descriptor e : edges(tm))
       if(fs.feature_edge[eidx(e)] && !border_edge[eidx(e)]) {
