@@ -17,6 +17,7 @@
 #include <Poisson_remesh/internal/feature_grading.h>
 #include <Poisson_remesh/internal/repair_degenerate_faces.h>
 #include <Poisson_remesh/internal/local_remake.h>
+#include <Poisson_remesh/internal/parallel.h>
 #include <Poisson_remesh/internal/regrading.h>
 #include <Poisson_remesh/parameters.h>
 #include <Poisson_remesh/poisson_disk_sample.h>
@@ -75,7 +76,8 @@ struct Poisson_remesh_result
   /// @}
   Relaxation_statistics relaxation;   ///< what the relaxation did (of the kept attempt)
   /// the time of each stage in seconds, summed over the remakes (the relaxation's includes their
-  /// checks and copies)
+  /// checks and copies; the tessellation's, the construction of the relaxer's search structures on
+  /// the input, which runs beside it in the parallel mode)
   /// @{
   double seconds_features = 0, seconds_sampling = 0, seconds_tessellation = 0, seconds_relaxation = 0;
   /// @}
@@ -258,7 +260,19 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     progress.set_span(0.3, 0.4);
     progress("tessellation", 0, 1);
     clear(output);
-    const auto tessellation = mutual_tessellation<ConcurrencyTag>(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm));
+    // the default relaxer, or the projection onto the input's features it would give (a user's
+    // relaxer): one of them is built, from the input and its features alone -- in the parallel
+    // mode on another thread while the tessellation, which is sequential, runs
+    std::optional<Lloyd_relaxer<TriangleMesh, K, ConcurrencyTag>> relaxer;
+    std::optional<internal::Feature_projector<TriangleMesh, K>> projector;
+    std::optional<decltype(mutual_tessellation<ConcurrencyTag>(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm)))> tessellated;
+    internal::run_beside<ConcurrencyTag>(
+      [&] {
+        if constexpr(default_relaxer) relaxer.emplace(input, features);
+        else projector.emplace(input, features);
+      },
+      [&] { tessellated.emplace(mutual_tessellation<ConcurrencyTag>(input, samples, features, output, CGAL::parameters::vertex_point_map(in_vpm))); });
+    const auto& tessellation = *tessellated;
     result.number_of_leftover_input_vertices = tessellation.leftover_vertices.size();
     result.number_of_merged_samples = tessellation.merged_samples.size();
     seconds[1] += since(t);
@@ -271,12 +285,6 @@ Poisson_remesh_result poisson_remesh_impl(const TriangleMesh& input, VPM in_vpm,
     for(const auto& v : tessellation.vertices)
       if(v.sample != tessellation.no_sample) put(kind_map, v.vertex, int(samples[v.sample].kind));
     auto kind = [&](vertex_descriptor v) { return get(kind_map, v); };
-    // the default relaxer, or the projection onto the input's features it would give (a user's
-    // relaxer): one of them is built
-    std::optional<Lloyd_relaxer<TriangleMesh, K, ConcurrencyTag>> relaxer;
-    std::optional<internal::Feature_projector<TriangleMesh, K>> projector;
-    if constexpr(default_relaxer) relaxer.emplace(input, features);
-    else projector.emplace(input, features);
     auto project_on_features = [&](const Point_3& p) { return relaxer ? relaxer->project_on_features(p) : projector->project(p); };
     auto project_on_features_from = [&](const Point_3& p, const Point_3& start) {
       return relaxer ? relaxer->project_on_features(p, start) : projector->project(p, start);

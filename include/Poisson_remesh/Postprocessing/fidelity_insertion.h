@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -62,7 +63,10 @@ struct Fidelity_input_points
   std::optional<Poisson_remesh::internal::Near_points<Point_3>> near;   ///< all of them, in cells of `tolerance`
   double tolerance = -1;   ///< the tolerance they were read for (-1: not yet read)
 
-  /** reads them from `input` for the tolerance `tol`, unless they were read for it */ void build(const InputMesh& input, double tol)
+  /** reads them from `input` for the tolerance `tol`, unless they were read for it (their grid
+      built on TBB's threads with `ConcurrencyTag` = CGAL::Parallel_tag) */
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
+  void build(const InputMesh& input, double tol)
   {
     if(near && tolerance == tol) return;
     near.reset();   // (valid again only once all of it is read: `tolerance` is set last)
@@ -88,7 +92,7 @@ struct Fidelity_input_points
     std::vector<Point_3> all = vertex_points;
     for(const auto& x : midpoints) all.push_back(x.first);
     for(const auto& x : centroids) all.push_back(x.first);
-    near.emplace(all, tol);
+    near.emplace(all, tol, ConcurrencyTag());
     tolerance = tol;
   }
 };
@@ -137,14 +141,25 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // (a point within the tolerance of a vertex, edge midpoint or triangle centroid of the mesh --
   // points of the mesh -- is near it: its squared distance is given as tol^2, a bound, and the
   // tree is not asked; the far points, and their distances, are the same)
-  std::vector<Point_3> mesh_points;
-  for(auto v : vertices(m)) mesh_points.push_back(get(vpm, v));
-  for(auto e : edges(m)) mesh_points.push_back(CGAL::midpoint(get(vpm, source(e, m)), get(vpm, target(e, m))));
-  for(face_descriptor f : faces(m)) {
-    const auto h = halfedge(f, m);
-    mesh_points.push_back(CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m))));
-  }
-  const Poisson_remesh::internal::Near_points<Point_3> near_mesh(mesh_points, tol);
+  // (the vertices, then the edges' midpoints, then the faces' centroids, each computed on TBB's
+  // threads with CGAL::Parallel_tag)
+  typedef typename GT::edge_descriptor edge_descriptor;
+  const std::vector<typename GT::vertex_descriptor> mesh_vertices(vertices(m).begin(), vertices(m).end());
+  const std::vector<edge_descriptor> mesh_edges(edges(m).begin(), edges(m).end());
+  const std::vector<face_descriptor> mesh_faces(faces(m).begin(), faces(m).end());
+  const std::size_t nv = mesh_vertices.size(), ne = mesh_edges.size();
+  std::vector<Point_3> mesh_points(nv + ne + mesh_faces.size());
+  Poisson_remesh::internal::for_each_index<ConcurrencyTag>(mesh_points.size(), [&](std::size_t i) {
+    if(i < nv) mesh_points[i] = get(vpm, mesh_vertices[i]);
+    else if(i < nv + ne) {
+      const edge_descriptor e = mesh_edges[i - nv];
+      mesh_points[i] = CGAL::midpoint(get(vpm, source(e, m)), get(vpm, target(e, m)));
+    } else {
+      const auto h = halfedge(mesh_faces[i - nv - ne], m);
+      mesh_points[i] = CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
+    }
+  }, 1024);
+  const Poisson_remesh::internal::Near_points<Point_3> near_mesh(mesh_points, tol, ConcurrencyTag());
   auto distances = [&] {   // (the squared distance from each query point to the mesh, or tol^2 when near)
     d2s.assign(queries.size(), -1);
     std::atomic<bool> far_from_points(false);
@@ -165,7 +180,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // the input's points, read once for all the passes of a relaxation (`input_cache`)
   Fidelity_input_points<InputMesh, Point_3> own_points;
   Fidelity_input_points<InputMesh, Point_3>& on_input = input_cache != nullptr ? *input_cache : own_points;
-  on_input.build(ctx.input(), tol);
+  on_input.template build<ConcurrencyTag>(ctx.input(), tol);
   // (the distance is 1-Lipschitz: a midpoint or centroid within tol of the mesh by way of one
   // of its vertices is not queried)
   std::vector<double> vertex_distance(on_input.vertex_points.size());
@@ -209,13 +224,19 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // rounding, is not queried)
   const double near_vertex = 0.999 * tol;
   std::vector<std::pair<Point_3, Point_3>> points;   // (the point, and a vertex of the mesh near it)
-  for(face_descriptor f : faces(m)) {
-    const auto h = halfedge(f, m);
-    const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
-    const Point_3 x = CGAL::centroid(a, b, c);
-    const double d2 = std::min({CGAL::to_double(CGAL::squared_distance(x, a)), CGAL::to_double(CGAL::squared_distance(x, b)),
-                                CGAL::to_double(CGAL::squared_distance(x, c))});
-    if(d2 > near_vertex * near_vertex) points.push_back({x, a});
+  {
+    // (the faces' centroids in mesh_points, whether each is far from its corners on TBB's threads)
+    std::vector<std::int8_t> far_from_corners(mesh_faces.size());
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(mesh_faces.size(), [&](std::size_t i) {
+      const auto h = halfedge(mesh_faces[i], m);
+      const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
+      const Point_3& x = mesh_points[nv + ne + i];
+      const double d2 = std::min({CGAL::to_double(CGAL::squared_distance(x, a)), CGAL::to_double(CGAL::squared_distance(x, b)),
+                                  CGAL::to_double(CGAL::squared_distance(x, c))});
+      far_from_corners[i] = d2 > near_vertex * near_vertex ? 1 : 0;
+    }, 1024);
+    for(std::size_t i = 0; i < mesh_faces.size(); ++i)
+      if(far_from_corners[i]) points.push_back({mesh_points[nv + ne + i], get(vpm, source(halfedge(mesh_faces[i], m), m))});
   }
   for(const auto& [d2, p] : nearest_on_input(points))
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)

@@ -7,6 +7,7 @@
 #ifndef POISSON_REMESH_INTERNAL_NEAR_POINTS_H
 #define POISSON_REMESH_INTERNAL_NEAR_POINTS_H
 
+#include <Poisson_remesh/internal/parallel.h>
 #include <Poisson_remesh/internal/radix_sort.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/squared_distance_3.h>
@@ -41,46 +42,56 @@ class Near_points
   struct Slot { Cell cell; std::size_t begin = 0, end = 0; };   // (end == 0: an empty slot)
 
 public:
-  Near_points(const std::vector<Point_3>& points, double cell) : cell_(cell)
+  /// (`ConcurrencyTag`: the points' cells, keys and places computed on TBB's threads with
+  /// CGAL::Parallel_tag; the same grid in both modes)
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
+  Near_points(const std::vector<Point_3>& points, double cell, ConcurrencyTag = ConcurrencyTag()) : cell_(cell)
   {
     // the points' order by cell (and by index within a cell): sorted on one 64-bit key when the
     // cells' span fits 21 bits per axis (always, in practice), else on the cells themselves
     const std::size_t n = points.size();
     std::vector<Cell> point_cell(n);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) { point_cell[i] = cell_of(points[i]); }, 1024);
     Cell lo{{0, 0, 0}}, hi{{0, 0, 0}};
-    for(std::size_t i = 0; i < n; ++i) {
-      point_cell[i] = cell_of(points[i]);
+    for(std::size_t i = 0; i < n; ++i)
       for(int k = 0; k < 3; ++k) {
         lo[k] = i == 0 ? point_cell[i][k] : std::min(lo[k], point_cell[i][k]);
         hi[k] = i == 0 ? point_cell[i][k] : std::max(hi[k], point_cell[i][k]);
       }
-    }
     std::vector<std::size_t> order(n);
+    // the cells in `order`'s order (read in sequence below, not through `order`)
+    std::vector<Cell> sorted_cell(n);
     const long long fits = 1LL << 21;
     if(hi[0] - lo[0] < fits && hi[1] - lo[1] < fits && hi[2] - lo[2] < fits) {
       std::vector<std::pair<std::uint64_t, std::size_t>> keyed(n);
-      for(std::size_t i = 0; i < n; ++i)
+      for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
         keyed[i] = {std::uint64_t(point_cell[i][0] - lo[0]) << 42 | std::uint64_t(point_cell[i][1] - lo[1]) << 21 | std::uint64_t(point_cell[i][2] - lo[2]), i};
+      }, 1024);
       stable_sort_by_key(keyed);   // (made in index order: std::sort's order of the pairs)
-      for(std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+      const std::uint64_t mask = (std::uint64_t(1) << 21) - 1;
+      for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+        order[i] = keyed[i].second;
+        const std::uint64_t key = keyed[i].first;
+        sorted_cell[i] = Cell{{lo[0] + (long long)(key >> 42), lo[1] + (long long)((key >> 21) & mask), lo[2] + (long long)(key & mask)}};
+      }, 1024);
     } else {
       std::vector<std::pair<Cell, std::size_t>> keyed(n);
       for(std::size_t i = 0; i < n; ++i) keyed[i] = {point_cell[i], i};
       std::sort(keyed.begin(), keyed.end());
-      for(std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
+      for(std::size_t i = 0; i < n; ++i) { order[i] = keyed[i].second; sorted_cell[i] = keyed[i].first; }
     }
-    points_.reserve(n);
-    for(std::size_t i : order) points_.push_back(points[i]);
+    points_.resize(n);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) { points_[i] = points[order[i]]; }, 1024);
     std::size_t cells = 0;
-    for(std::size_t i = 0; i < n; ++i) cells += (i == 0 || point_cell[order[i]] != point_cell[order[i - 1]]);
+    for(std::size_t i = 0; i < n; ++i) cells += (i == 0 || sorted_cell[i] != sorted_cell[i - 1]);
     std::size_t size = 1;
     while(size < 2 * cells) size *= 2;
     table_.resize(size);
     mask_ = size - 1;
     number_of_cells_ = cells;
     for(std::size_t i = 0, j = 0; i < n; i = j) {
-      const Cell& c = point_cell[order[i]];
-      while(j < n && point_cell[order[j]] == c) ++j;
+      const Cell& c = sorted_cell[i];
+      while(j < n && sorted_cell[j] == c) ++j;
       std::size_t h = hash(c) & mask_;
       while(table_[h].end != 0) h = (h + 1) & mask_;
       table_[h] = Slot{c, i, j};

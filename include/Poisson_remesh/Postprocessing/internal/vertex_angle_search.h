@@ -154,15 +154,16 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     const int c = ctx.constraint(x, m, is_feature, is_corner);
     return !smoothing && c == 2 && !is_corner(x) && ctx.feature_degree(x, m, is_feature) == 1 ? 1 : c;
   };
+  std::vector<vertex_descriptor> candidates;   // (those whose movability decides whether they search)
   if(only != nullptr) {   // (Angle_goal::smallest: those of `only` at a triangle sharper than optimized_angle)
     for(vertex_descriptor x : *only) {
       bool at_sharp = false;
       for(auto h : CGAL::halfedges_around_target(x, m))
         if(!is_border(h, m) && ctx.min_angle(get(vpm, source(h, m)), get(vpm, x), get(vpm, target(next(h, m), m))) < sharp) { at_sharp = true; break; }
-      if(at_sharp && movability(x) < 2) todo.push_back(x);
+      if(at_sharp) candidates.push_back(x);
     }
   } else if(smoothing) {
-    for(vertex_descriptor x : vertices(m)) if(movability(x) < 2) todo.push_back(x);
+    candidates.assign(vertices(m).begin(), vertices(m).end());
   } else {   // (in the order of vertices(m), not of the descriptors: a Polyhedron_3's are addresses)
     auto at_sharp = get(CGAL::dynamic_vertex_property_t<bool>(), m);
     for(vertex_descriptor x : vertices(m)) put(at_sharp, x, false);
@@ -172,8 +173,23 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
       if(ctx.min_angle(get(vpm, v[0]), get(vpm, v[1]), get(vpm, v[2])) >= sharp) continue;
       for(vertex_descriptor x : v) put(at_sharp, x, true);
     }
-    for(vertex_descriptor x : vertices(m)) if(get(at_sharp, x) && movability(x) < 2) todo.push_back(x);
+    for(vertex_descriptor x : vertices(m)) if(get(at_sharp, x)) candidates.push_back(x);
   }
+  // each candidate's movability, once: it reads the vertex's star and its flags, which no move
+  // changes, so the searches below reuse it (on TBB's threads with Parallel_tag); with
+  // `pinned_only` it reads the star's angles, which earlier moves change, and pin_position may
+  // remember the pin: it is read again in order where the vertex searches
+  std::vector<int> movabilities(candidates.size());
+  if(pinned_only)
+    for(std::size_t i = 0; i < candidates.size(); ++i) movabilities[i] = movability(candidates[i]);
+  else
+    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { movabilities[i] = movability(candidates[i]); });
+  auto movability_of = get(CGAL::dynamic_vertex_property_t<int>(), m);
+  for(std::size_t i = 0; i < candidates.size(); ++i)
+    if(movabilities[i] < 2) {
+      todo.push_back(candidates[i]);
+      put(movability_of, candidates[i], movabilities[i]);
+    }
   // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
   // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
   // degrees over its angle sum (a third of the sum counts as 30), so that the neighbours raise
@@ -403,7 +419,7 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     found.clear();
     for(vertex_descriptor v : round) {
       // (sequential: pin_position may remember the pin)
-      const int c = movability(v);
+      const int c = pinned_only ? movability(v) : get(movability_of, v);
       found.push_back(Found{v, c, pinned_only ? pin_position(v) : nullptr, 0, false, get(vpm, v), get(vpm, v)});
     }
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(found.size(), [&](std::size_t i) {
