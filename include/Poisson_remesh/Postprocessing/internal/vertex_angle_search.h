@@ -175,21 +175,17 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
     }
     for(vertex_descriptor x : vertices(m)) if(get(at_sharp, x)) candidates.push_back(x);
   }
-  // each candidate's movability, once: it reads the vertex's star and its flags, which no move
-  // changes, so the searches below reuse it (on TBB's threads with Parallel_tag); with
-  // `pinned_only` it reads the star's angles, which earlier moves change, and pin_position may
-  // remember the pin: it is read again in order where the vertex searches
-  std::vector<int> movabilities(candidates.size());
-  if(pinned_only)
-    for(std::size_t i = 0; i < candidates.size(); ++i) movabilities[i] = movability(candidates[i]);
-  else
-    Poisson_remesh::internal::for_each_index<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { movabilities[i] = movability(candidates[i]); });
-  auto movability_of = get(CGAL::dynamic_vertex_property_t<int>(), m);
-  for(std::size_t i = 0; i < candidates.size(); ++i)
-    if(movabilities[i] < 2) {
-      todo.push_back(candidates[i]);
-      put(movability_of, candidates[i], movabilities[i]);
-    }
+  // the candidates that may move (their movabilities on TBB's threads with Parallel_tag: nothing
+  // moves meanwhile; with `pinned_only` in order, as pin_position may remember the pin)
+  {
+    std::vector<int> movabilities(candidates.size());
+    if(pinned_only)
+      for(std::size_t i = 0; i < candidates.size(); ++i) movabilities[i] = movability(candidates[i]);
+    else
+      Poisson_remesh::internal::for_each_index<ConcurrencyTag>(candidates.size(), [&](std::size_t i) { movabilities[i] = movability(candidates[i]); });
+    for(std::size_t i = 0; i < candidates.size(); ++i)
+      if(movabilities[i] < 2) todo.push_back(candidates[i]);
+  }
   // a tip -- a fixed vertex on no feature curve whose angles sum to less than 90 degrees -- has
   // triangles sharper than 30 degrees whatever its neighbours do: its angles count times 90
   // degrees over its angle sum (a third of the sum counts as 30), so that the neighbours raise
@@ -417,11 +413,15 @@ std::size_t vertex_angle_search(const Context& ctx, Mesh& m, IsFeatureEdge is_fe
   std::vector<Found> found;
   for(const auto& round : Poisson_remesh::internal::dependency_rounds(m, todo)) {
     found.clear();
+    // each vertex's movability read again: is_feature may read the points, which the rounds
+    // before moved (on TBB's threads with Parallel_tag: no vertex of this round has moved yet;
+    // with `pinned_only` in order, as pin_position may remember the pin)
     for(vertex_descriptor v : round) {
-      // (sequential: pin_position may remember the pin)
-      const int c = pinned_only ? movability(v) : get(movability_of, v);
+      const int c = pinned_only ? movability(v) : 0;
       found.push_back(Found{v, c, pinned_only ? pin_position(v) : nullptr, 0, false, get(vpm, v), get(vpm, v)});
     }
+    if(!pinned_only)
+      Poisson_remesh::internal::for_each_index<ConcurrencyTag>(found.size(), [&](std::size_t i) { found[i].c = movability(found[i].v); });
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(found.size(), [&](std::size_t i) {
       Found& x = found[i];
       if(unmoved != nullptr) {
