@@ -225,7 +225,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const double near_vertex = 0.999 * tol;
   std::vector<std::pair<Point_3, Point_3>> points;   // (the point, and a vertex of the mesh near it)
   {
-    // (the faces' centroids in mesh_points, whether each is far from its corners on TBB's threads)
+    // (the faces' centroids in mesh_points, whether each is far from its three vertices on TBB's threads)
     std::vector<std::int8_t> far_from_corners(mesh_faces.size());
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(mesh_faces.size(), [&](std::size_t i) {
       const auto h = halfedge(mesh_faces[i], m);

@@ -22,7 +22,7 @@
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
+#include <tbb/parallel_invoke.h>
 #endif
 
 #include <algorithm>
@@ -67,24 +67,15 @@ void for_each_index(std::size_t n, F f, std::size_t grain = 64)
   for(std::size_t i = 0; i < n; ++i) f(i);
 }
 
-/// `main()` and `beside()` at once, `beside` on another of TBB's threads, when `ConcurrencyTag` asks
-/// for parallel loops (they must write no data in common, and `beside` must read nothing that
-/// `main` writes); else `main()`, then `beside()`. Returns when both are done; an exception of
-/// either is thrown again (main's first).
+/// `main()` and `beside()` at once (tbb::parallel_invoke) when `ConcurrencyTag` asks for parallel
+/// loops (they must write no data in common, and neither may read what the other writes); else
+/// `main()`, then `beside()`. Returns when both are done; an exception of either is thrown again.
 template <class ConcurrencyTag, class Beside, class Main>
 void run_beside(Beside beside, Main main)
 {
 #ifdef CGAL_LINKED_WITH_TBB
   if constexpr(is_parallel<ConcurrencyTag>()) {
-    tbb::task_group group;
-    group.run(beside);
-    try {
-      main();
-    } catch(...) {
-      try { group.wait(); } catch(...) {}
-      throw;
-    }
-    group.wait();
+    tbb::parallel_invoke(main, beside);
     return;
   }
 #endif
