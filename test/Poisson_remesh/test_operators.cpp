@@ -9,6 +9,7 @@
 #include "test_support.h"
 
 #include <Poisson_remesh/Features/detect_features.h>
+#include <Poisson_remesh/Postprocessing/internal/near_surface.h>
 #include <Poisson_remesh/Relaxation/Lloyd_relaxer.h>
 #include <Poisson_remesh/internal/closest_point.h>
 #include <Poisson_remesh/internal/near_points.h>
@@ -984,6 +985,39 @@ TEST_CASE("the point grid finds a point within a distance exactly when there is 
     if(nearest <= cell * cell) { CHECK(found == nearest); ++exact; }
   }
   CHECK(exact > 500);
+  // the nearest point: its place among the points and its squared distance as a scan finds them
+  // (the first place of the nearest), whenever it lies within a cell; never nearer than the nearest
+  // otherwise. With `enough`, a point within it when there is one, else the nearest again
+  std::size_t nearest_found = 0, enough_met = 0;
+  for(int i = 0; i < 2000; ++i) {
+    const Point q(1.1 * coordinate(draw), 1.1 * coordinate(draw), 0.2 * coordinate(draw));
+    std::size_t best = std::size_t(-1);
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for(std::size_t k = 0; k < points.size(); ++k) {
+      const double d2 = CGAL::to_double(CGAL::squared_distance(points[k], q));
+      if(d2 < best_d2) { best_d2 = d2; best = k; }
+    }
+    const auto found = grid.nearest(q);
+    if(best_d2 <= cell * cell) {
+      CHECK(found.first == best);
+      CHECK(found.second == best_d2);
+      ++nearest_found;
+    } else {
+      CHECK(found.second >= best_d2);
+    }
+    const double enough = 0.5 * cell * cell;
+    const auto early = grid.nearest(q, enough);
+    if(best_d2 <= enough) {
+      REQUIRE(early.first < points.size());
+      CHECK(early.second <= enough);
+      CHECK(early.second == CGAL::to_double(CGAL::squared_distance(points[early.first], q)));
+      ++enough_met;
+    } else if(best_d2 <= cell * cell) {
+      CHECK(early.first == best);
+    }
+  }
+  CHECK(nearest_found > 500);
+  CHECK(enough_met > 100);
   // a triangle within a distance of a point: small triangles (the cells around them) and ones
   // larger than the points' spread (every point)
   std::size_t hits = 0, misses = 0;
@@ -1014,6 +1048,91 @@ TEST_CASE("the point grid finds a point within a distance exactly when there is 
   const PR::internal::Near_points<Point> empty(std::vector<Point>(), cell);
   CHECK_FALSE(empty.within(points[0], cell));
   CHECK(empty.squared_distance(points[0]) == std::numeric_limits<double>::infinity());
+  CHECK(empty.nearest(points[0]).first == std::size_t(-1));
+}
+
+// Postprocessing/internal/near_surface.h, the fidelity insertions' test of "within the tolerance":
+// the squared distance to the triangles around the nearest vertex is never under the distance to
+// the whole mesh (CGAL's AABB tree is the judge), equals it for nearly every point near the
+// surface, and a search told that a distance is enough stops at one that is
+TEST_CASE("the triangles around the nearest vertex bound the distance to the mesh", "[operators][fidelity]")
+{
+  Mesh m;
+  REQUIRE(CGAL::IO::read_polygon_mesh(test_support::data_mesh("meshes/fandisk.off"), m));
+  CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> tree(faces(m).first, faces(m).second, m);
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  for(V v : vertices(m)) points.push_back(m.point(v));
+  double length = 0;
+  for(auto e : edges(m)) length += std::sqrt(CGAL::squared_distance(m.point(source(e, m)), m.point(target(e, m))));
+  length /= double(num_edges(m));
+  for(auto f : faces(m)) {
+    std::array<std::size_t, 3> t;
+    std::size_t k = 0;
+    for(V v : vertices_around_face(halfedge(f, m), m)) t[k++] = std::size_t(v);
+    triangles.push_back(t);
+  }
+  const PR::Postprocessing::internal::Near_surface<Point> surface(points, triangles, 2 * length, CGAL::Sequential_tag());
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::size_t equal = 0, enough_met = 0;
+  const int n = 3000;
+  for(int i = 0; i < n; ++i) {
+    const Point v = points[std::size_t(random()) % points.size()];
+    const double step = 0.5 * length;
+    const Point q(v.x() + step * unit(random), v.y() + step * unit(random), v.z() + step * unit(random));
+    const double exact = CGAL::to_double(tree.squared_distance(q));
+    const double bound = surface.squared_distance_bound(q);
+    // (both rounded: a slack of 1e-9 of the distance and 1e-12 of an edge)
+    const double slack = 1e-9 * exact + 1e-12 * length * length;
+    CHECK(bound >= exact - slack);
+    if(bound <= exact + slack) ++equal;
+    const double enough = 0.01 * length * length;
+    const double early = surface.squared_distance_bound(q, enough);
+    CHECK(early >= exact - slack);
+    if(early <= enough) ++enough_met;
+    else CHECK(early == bound);
+  }
+  CHECK(equal > 0.9 * n);
+  CHECK(enough_met > 0.1 * n);
+  // a point farther than a cell from every vertex: no bound
+  CGAL::Bbox_3 box;
+  for(const Point& p : points) box += p.bbox();
+  CHECK(surface.squared_distance_bound(Point(box.xmax() + 10 * length, box.ymax(), box.zmax())) == std::numeric_limits<double>::infinity());
+}
+
+// internal/closest_point.h's box query (the fidelity insertions' faces near a split triangle): the
+// faces whose boxes meet a box, judged against a scan of every face
+TEST_CASE("the tree's box query finds every face whose box meets the box", "[operators][fidelity]")
+{
+  Mesh m;
+  REQUIRE(CGAL::IO::read_polygon_mesh(test_support::data_mesh("meshes/fandisk.off"), m));
+  CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>> tree(faces(m).first, faces(m).second, m);
+  CGAL::Bbox_3 all;
+  for(V v : vertices(m)) all += m.point(v).bbox();
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::size_t found = 0;
+  for(int i = 0; i < 300; ++i) {
+    double lo[3], hi[3];
+    for(int k = 0; k < 3; ++k) {
+      const double a = all.min(k) + (all.max(k) - all.min(k)) * unit(random), size = (all.max(k) - all.min(k)) * 0.1 * unit(random);
+      lo[k] = a;
+      hi[k] = a + size;
+    }
+    const CGAL::Bbox_3 b(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    std::vector<Mesh::Face_index> ours, judge;
+    PR::internal::primitives_meeting_box(tree, b, std::back_inserter(ours));
+    for(auto f : faces(m)) {
+      CGAL::Bbox_3 fb;
+      for(V v : vertices_around_face(halfedge(f, m), m)) fb += m.point(v).bbox();
+      if(CGAL::do_overlap(fb, b)) judge.push_back(f);
+    }
+    std::sort(ours.begin(), ours.end());
+    CHECK(ours == judge);
+    found += judge.size();
+  }
+  CHECK(found > 300);
 }
 
 TEST_CASE("the untangling's face box grid finds every face whose box meets a box, after moves too", "[operators][intersections]")

@@ -15,6 +15,7 @@
 #ifndef POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
 #define POISSON_REMESH_POSTPROCESSING_FIDELITY_INSERTION_H
 
+#include <Poisson_remesh/Postprocessing/internal/near_surface.h>
 #include <Poisson_remesh/Relaxation/Relaxation_statistics.h>
 #include <Poisson_remesh/Relaxation/internal/Relaxation_context.h>
 #include <Poisson_remesh/internal/closest_point.h>
@@ -27,10 +28,13 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <optional>
 #include <set>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -52,8 +56,9 @@ struct Fidelity_settings
 
 /// The input's points that the fidelity insertions measure -- its vertices (those on a face), edge
 /// midpoints and face centroids, with the vertices each is made of (by their place among the
-/// vertices) -- and a grid of them all (cells of the tolerance). The same for every pass on one
-/// input and tolerance: built by the first.
+/// vertices) -- in a grid of cells of the tolerance, and its triangles around each vertex in a grid
+/// of the vertices (together they tell most points of the mesh near the input). The same for every
+/// pass on one input and tolerance: built by the first.
 template <class InputMesh, class Point_3>
 struct Fidelity_input_points
 {
@@ -61,6 +66,7 @@ struct Fidelity_input_points
   std::vector<std::pair<Point_3, std::array<std::size_t, 2>>> midpoints;   ///< each edge's midpoint, and its ends among vertex_points
   std::vector<std::pair<Point_3, std::array<std::size_t, 3>>> centroids;   ///< each face's centroid, and its corners among vertex_points
   std::optional<Poisson_remesh::internal::Near_points<Point_3>> near;   ///< all of them, in cells of `tolerance`
+  std::optional<internal::Near_surface<Point_3>> near_triangles;   ///< the input's triangles around its vertices
   double tolerance = -1;   ///< the tolerance they were read for (-1: not yet read)
 
   /** reads them from `input` for the tolerance `tol`, unless they were read for it (their grid
@@ -69,7 +75,8 @@ struct Fidelity_input_points
   void build(const InputMesh& input, double tol)
   {
     if(near && tolerance == tol) return;
-    near.reset();   // (valid again only once all of it is read: `tolerance` is set last)
+    near.reset();
+    near_triangles.reset();   // (valid again only once all of it is read: `tolerance` is set last)
     vertex_points.clear();
     midpoints.clear();
     centroids.clear();
@@ -93,6 +100,13 @@ struct Fidelity_input_points
     for(const auto& x : midpoints) all.push_back(x.first);
     for(const auto& x : centroids) all.push_back(x.first);
     near.emplace(all, tol, ConcurrencyTag());
+    // (the vertices' grid's cell: the mean edge length, so that a point on the input finds its
+    // nearest vertex)
+    double length = 0;
+    for(const auto& x : midpoints) length += std::sqrt(CGAL::to_double(CGAL::squared_distance(vertex_points[x.second[0]], vertex_points[x.second[1]])));
+    std::vector<std::array<std::size_t, 3>> triangles;
+    for(const auto& x : centroids) triangles.push_back(x.second);
+    near_triangles.emplace(vertex_points, std::move(triangles), (std::max)(tol, midpoints.empty() ? 0. : 2 * length / double(midpoints.size())), ConcurrencyTag());
     tolerance = tol;
   }
 };
@@ -121,7 +135,7 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const double tol = s.max_deviation * ctx.diagonal();
   if(!(tol > 0) || faces(m).empty()) return 0;
   // the mesh's tree, built on first use and before the mesh changes (on a mesh that follows its
-  // input, the points near a point of the mesh below answer most queries, and often all of them)
+  // input, the triangles around the nearest vertex below answer most queries, and often all of them)
   std::optional<Tree> tree_storage;
   auto tree = [&]() -> const Tree& {
     if(!tree_storage) {
@@ -138,33 +152,42 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::vector<std::pair<double, Point_3>> far;
   std::vector<Point_3> queries;
   std::vector<double> d2s;
-  // (a point within the tolerance of a vertex, edge midpoint or triangle centroid of the mesh --
-  // points of the mesh -- is near it: its squared distance is given as tol^2, a bound, and the
-  // tree is not asked; the far points, and their distances, are the same)
-  // (the vertices, then the edges' midpoints, then the faces' centroids, each computed on TBB's
-  // threads with CGAL::Parallel_tag)
-  typedef typename GT::edge_descriptor edge_descriptor;
-  const std::vector<typename GT::vertex_descriptor> mesh_vertices(vertices(m).begin(), vertices(m).end());
-  const std::vector<edge_descriptor> mesh_edges(edges(m).begin(), edges(m).end());
+  // (a point within the tolerance of a triangle around the mesh's vertex nearest to it is near the
+  // mesh: its squared distance to those triangles is given, a bound at most tol^2, and the tree is
+  // not asked; the far points, and their distances, are the same)
+  // (the vertices' points, each face's vertices by their places and its centroid, computed on
+  // TBB's threads with CGAL::Parallel_tag; the vertices' grid's cell is twice the mean edge length)
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  const std::vector<vertex_descriptor> mesh_vertices(vertices(m).begin(), vertices(m).end());
   const std::vector<face_descriptor> mesh_faces(faces(m).begin(), faces(m).end());
-  const std::size_t nv = mesh_vertices.size(), ne = mesh_edges.size();
-  std::vector<Point_3> mesh_points(nv + ne + mesh_faces.size());
-  Poisson_remesh::internal::for_each_index<ConcurrencyTag>(mesh_points.size(), [&](std::size_t i) {
-    if(i < nv) mesh_points[i] = get(vpm, mesh_vertices[i]);
-    else if(i < nv + ne) {
-      const edge_descriptor e = mesh_edges[i - nv];
-      mesh_points[i] = CGAL::midpoint(get(vpm, source(e, m)), get(vpm, target(e, m)));
-    } else {
-      const auto h = halfedge(mesh_faces[i - nv - ne], m);
-      mesh_points[i] = CGAL::centroid(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
-    }
+  const std::size_t nv = mesh_vertices.size(), nf = mesh_faces.size();
+  auto place = get(CGAL::dynamic_vertex_property_t<std::size_t>(), m);
+  std::vector<Point_3> vertex_points(nv), centroids(nf);
+  for(std::size_t i = 0; i < nv; ++i) {   // (in sequence: a Polyhedron_3's property map is a hash map)
+    put(place, mesh_vertices[i], i);
+    vertex_points[i] = get(vpm, mesh_vertices[i]);
+  }
+  std::vector<std::array<std::size_t, 3>> triangles(nf);
+  std::vector<double> perimeters(nf);
+  Poisson_remesh::internal::for_each_index<ConcurrencyTag>(nf, [&](std::size_t i) {
+    const auto h = halfedge(mesh_faces[i], m);
+    const vertex_descriptor a = source(h, m), b = target(h, m), c = target(next(h, m), m);
+    triangles[i] = {{get(place, a), get(place, b), get(place, c)}};
+    const Point_3 &pa = get(vpm, a), &pb = get(vpm, b), &pc = get(vpm, c);
+    centroids[i] = CGAL::centroid(pa, pb, pc);
+    perimeters[i] = std::sqrt(CGAL::to_double(CGAL::squared_distance(pa, pb))) + std::sqrt(CGAL::to_double(CGAL::squared_distance(pb, pc))) +
+                    std::sqrt(CGAL::to_double(CGAL::squared_distance(pc, pa)));
   }, 1024);
-  const Poisson_remesh::internal::Near_points<Point_3> near_mesh(mesh_points, tol, ConcurrencyTag());
-  auto distances = [&] {   // (the squared distance from each query point to the mesh, or tol^2 when near)
+  double mean_edge = 0;
+  for(double x : perimeters) mean_edge += x;
+  mean_edge /= 3. * double((std::max)(nf, std::size_t(1)));
+  const internal::Near_surface<Point_3> near_mesh(std::move(vertex_points), std::move(triangles), (std::max)(tol, 2 * mean_edge), ConcurrencyTag());
+  auto distances = [&] {   // (the squared distance from each query point to the mesh, or a bound of it up to tol^2)
     d2s.assign(queries.size(), -1);
     std::atomic<bool> far_from_points(false);
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(queries.size(), [&](std::size_t i) {
-      if(near_mesh.within(queries[i], tol)) d2s[i] = tol * tol;
+      const double d2 = near_mesh.squared_distance_bound(queries[i], tol * tol);
+      if(d2 <= tol * tol) d2s[i] = d2;
       else far_from_points = true;
     });
     if(!far_from_points) return;
@@ -207,13 +230,15 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // in the order of `points`, in parallel with CGAL::Parallel_tag; the search starts from `hint`,
   // a vertex of the mesh: on the input, and near c)
   // (a point within the tolerance of a point of the input -- one of its vertices, edge midpoints
-  // and triangle centroids listed above, queried or not -- is near the input: its squared
-  // distance is given as tol^2, a bound, and it is not projected)
+  // and triangle centroids listed above, queried or not -- or of a triangle of the input around the
+  // input's vertex nearest to it is near the input: its squared distance is given as tol^2, a
+  // bound, and it is not projected)
   const Poisson_remesh::internal::Near_points<Point_3>& near_input = *on_input.near;
+  const internal::Near_surface<Point_3>& near_input_triangles = *on_input.near_triangles;
   auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
     std::vector<std::pair<double, Point_3>> nearest(points.size());
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(points.size(), [&](std::size_t i) {
-      if(near_input.within(points[i].first, tol)) { nearest[i] = {tol * tol, points[i].second}; return; }
+      if(near_input_triangles.squared_distance_bound(points[i].first, tol * tol) <= tol * tol || near_input.within(points[i].first, tol)) { nearest[i] = {tol * tol, points[i].second}; return; }
       const Point_3 p = ctx.project_on_surface(points[i].first, points[i].second);
       nearest[i] = {CGAL::to_double(CGAL::squared_distance(points[i].first, p)), p};
     });
@@ -225,24 +250,23 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   const double near_vertex = 0.999 * tol;
   std::vector<std::pair<Point_3, Point_3>> points;   // (the point, and a vertex of the mesh near it)
   {
-    // (the faces' centroids in mesh_points, whether each is far from its three vertices on TBB's threads)
+    // (whether each face's centroid is far from its three vertices, on TBB's threads)
     std::vector<std::int8_t> far_from_corners(mesh_faces.size());
     Poisson_remesh::internal::for_each_index<ConcurrencyTag>(mesh_faces.size(), [&](std::size_t i) {
       const auto h = halfedge(mesh_faces[i], m);
       const Point_3 &a = get(vpm, source(h, m)), &b = get(vpm, target(h, m)), &c = get(vpm, target(next(h, m), m));
-      const Point_3& x = mesh_points[nv + ne + i];
+      const Point_3& x = centroids[i];
       const double d2 = std::min({CGAL::to_double(CGAL::squared_distance(x, a)), CGAL::to_double(CGAL::squared_distance(x, b)),
                                   CGAL::to_double(CGAL::squared_distance(x, c))});
       far_from_corners[i] = d2 > near_vertex * near_vertex ? 1 : 0;
     }, 1024);
     for(std::size_t i = 0; i < mesh_faces.size(); ++i)
-      if(far_from_corners[i]) points.push_back({mesh_points[nv + ne + i], get(vpm, source(halfedge(mesh_faces[i], m), m))});
+      if(far_from_corners[i]) points.push_back({centroids[i], get(vpm, source(halfedge(mesh_faces[i], m), m))});
   }
   for(const auto& [d2, p] : nearest_on_input(points))
     // (not when that input point is near the mesh elsewhere: the other side of a thin part)
     if(d2 > tol * tol && Poisson_remesh::internal::squared_distance_to(tree(), p) > tol * tol) far.push_back({d2, p});
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
-  typedef typename GT::vertex_descriptor vertex_descriptor;
   // (the split point, the edge's ends, and whether the edge follows a feature curve or a border)
   std::vector<std::tuple<double, Point_3, vertex_descriptor, vertex_descriptor, bool>> far_edges;
   std::vector<halfedge_descriptor> hs;
@@ -277,12 +301,19 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   if(far.empty() && far_edges.empty()) return 0;
   std::sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   if(!far.empty()) tree();   // (the tree of the mesh as it is now: the insertions below change it)
-  const auto before = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m);   // intersections there already
-  if(before.size() > num_faces(m)) return 0;   // (folded everywhere: see angle_pass)
   std::set<face_descriptor> touched;
   std::vector<vertex_descriptor> mine;
   std::size_t done = 0;
   const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_insertions_share * double(num_vertices(m))));
+  // the intersections there already, found before each insertion: the pairs among the faces whose
+  // boxes meet the box of the triangle it splits grown to hold its point (the box of the three
+  // triangles it becomes), leaving out the faces the insertions before it split or made (those are
+  // not in the tree). The check after the insertions takes a pair that holds a new vertex for new
+  // unless it is here, and every such pair that was there before the insertions is: it holds a
+  // split triangle as it was and a face that met it (no search of the whole mesh)
+  typedef std::decay_t<decltype(Poisson_remesh::internal::intersecting_pairs(m))> Pairs;
+  Pairs before;
+  std::vector<face_descriptor> split, around;
   for(const auto& fp : far) {
     if(mine.size() >= cap) break;
     const face_descriptor f = Poisson_remesh::internal::closest_point_and_primitive(tree(), fp.second).second;
@@ -291,11 +322,21 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     touched.insert(f);
     for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
       if(!is_border(opposite(h, m), m)) touched.insert(face(opposite(h, m), m));
+    around.clear();
+    Poisson_remesh::internal::primitives_meeting_box(tree(), Poisson_remesh::internal::face_box(f, m) + fp.second.bbox(), std::back_inserter(around));
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    around.erase(std::remove_if(around.begin(), around.end(), [&](face_descriptor g) { return std::binary_search(split.begin(), split.end(), g); }), around.end());
+    const Pairs here = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m, around);
+    before.insert(before.end(), here.begin(), here.end());
+    split.insert(std::upper_bound(split.begin(), split.end(), f), f);
     const auto hnew = CGAL::Euler::add_center_vertex(halfedge(f, m), m);
     const auto v = target(hnew, m);
     put(vpm, v, fp.second);
     mine.push_back(v);
   }
+  std::sort(before.begin(), before.end());
+  before.erase(std::unique(before.begin(), before.end()), before.end());
   // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
   std::sort(mine.begin(), mine.end());
   std::vector<vertex_descriptor> undo;

@@ -1,7 +1,8 @@
 // Poisson_remesh/internal/closest_point.h
 //
 // The point of a CGAL AABB tree's primitives closest to a query point, found with the nearer
-// child box visited first and the box distances compared in double precision.
+// child box visited first and the box distances compared in double precision; and the primitives
+// whose boxes meet a box.
 //
 // Why not AABB_tree::closest_point: it visits a node's children left one first, whatever their
 // distance, and decides each box with the kernel's filtered predicate of a ball against a box. The relaxation
@@ -214,7 +215,40 @@ typename Tree::Point beyond_the_tree(const Tree& tree, const typename Tree::Poin
   return typename Tree::Point(x + 4 * d + 1, y, z);
 }
 
+// the traversal traits of AABB_tree::traversal that collect the primitives whose boxes (of their
+// points as they are now) meet a box: the tree's nodes are pruned by their boxes of its build
+template <class Tree, class OutputIterator>
+class Meeting_box
+{
+public:
+  Meeting_box(const typename Tree::AABB_traits& traits, const CGAL::Bbox_3& box, OutputIterator out) : traits_(traits), box_(box), out_(out) {}
+  bool go_further() const { return true; }
+  template <class Query>
+  void intersection(const Query&, const typename Tree::Primitive& primitive)
+  {
+    if(CGAL::do_overlap(CGAL::internal::Primitive_helper<typename Tree::AABB_traits>::get_datum(primitive, traits_).bbox(), box_))
+      *out_++ = primitive.id();
+  }
+  template <class Query, class Node>
+  bool do_intersect(const Query&, const Node& node) const { return CGAL::do_overlap(node.bbox(), box_); }
+
+private:
+  const typename Tree::AABB_traits& traits_;
+  CGAL::Bbox_3 box_;
+  OutputIterator out_;
+};
+
 } // namespace closest_point_detail
+
+/// The ids of `tree`'s primitives whose boxes meet `box` (the primitives as they are now; a
+/// primitive moved out of its box of the tree's build may be missed)
+template <class Tree, class OutputIterator>
+void primitives_meeting_box(const Tree& tree, const CGAL::Bbox_3& box, OutputIterator out)
+{
+  if(tree.empty()) return;
+  closest_point_detail::Meeting_box<Tree, OutputIterator> search(tree.traits(), box, out);
+  tree.traversal(box, search);
+}
 
 /// The point of `tree`'s primitives closest to `query`; `hint`, a point on them (the search's
 /// first bound). `tree` is not empty.

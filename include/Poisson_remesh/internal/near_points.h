@@ -1,7 +1,7 @@
 // Poisson_remesh/internal/near_points.h
 //
 // Points in a grid of cubic cells (internal): which of them lie within a cell's size of a
-// point or a triangle. Used by the remakes (internal/regrading.h, internal/local_remake.h) and the
+// point or a triangle, and which is the nearest within a cell's size. Used by the remakes (internal/regrading.h, internal/local_remake.h) and the
 // fidelity insertions (Postprocessing/fidelity_insertion.h).
 
 #ifndef POISSON_REMESH_INTERNAL_NEAR_POINTS_H
@@ -82,6 +82,7 @@ public:
     }
     points_.resize(n);
     for_each_index<ConcurrencyTag>(n, [&](std::size_t i) { points_[i] = points[order[i]]; }, 1024);
+    place_ = std::move(order);
     std::size_t cells = 0;
     for(std::size_t i = 0; i < n; ++i) cells += (i == 0 || sorted_cell[i] != sorted_cell[i - 1]);
     std::size_t size = 1;
@@ -103,6 +104,24 @@ public:
     double best = std::numeric_limits<double>::infinity();
     any_near(p, [&](double d2) { best = std::min(best, d2); return false; });
     return best;
+  }
+  /// the place (among the points given) of the point nearest `p` among those of p's cell and the 26
+  /// around it -- every point within a cell's size of `p` is among them -- and its squared
+  /// distance; (-1 as a size_t, infinity) when those cells are empty. The search stops at a point
+  /// whose squared distance is `enough` or less (then it returns that one: the cells are searched
+  /// in the same order for the same `p`, their points in the grid's order)
+  std::pair<std::size_t, double> nearest(const Point_3& p, double enough = -1) const
+  {
+    std::size_t best = std::size_t(-1);
+    double best_d2 = std::numeric_limits<double>::infinity();
+    bool done = false;
+    nearest_in_reach(p, [&](double d2, std::size_t i) {
+      if(done) return -1.;
+      if(d2 < best_d2 || (d2 == best_d2 && place_[i] < best)) { best_d2 = d2; best = place_[i]; }
+      if(best_d2 <= enough) { done = true; return -1.; }   // (no cell is nearer than -1: the search ends)
+      return best_d2;
+    });
+    return {best, best_d2};
   }
   /// whether a point lies within `d` (<= the cell) of `p`
   bool within(const Point_3& p, double d) const
@@ -157,12 +176,15 @@ private:
         if(stop(CGAL::to_double(CGAL::squared_distance(p, points_[i])))) return true;
       return false;
     };
-    if(in(c)) return true;
-    // the squared distance from the point asked about to the neighbouring cells' slabs along
-    // each axis, at least: below (0) and above (2) its own cell's, 0 within it (1). A cell's
-    // points have floor(coordinate / cell) equal to its index, which rounding may give to a point
-    // a few ulps across the bound index * cell: the distances are shortened by that much (`slack`)
-    double gap[3][3];
+    const double bound = reach * reach;
+    return scan(x, c, in, [&] { return bound; });
+  }
+  // the squared distance from the point x (in cell c) to the neighbouring cells' slabs along each
+  // axis, at least: below (0) and above (2) its own cell's, 0 within it (1). A cell's points have
+  // floor(coordinate / cell) equal to its index, which rounding may give to a point a few ulps
+  // across the bound index * cell: the distances are shortened by that much (`slack`)
+  void gaps(const double x[3], const Cell& c, double gap[3][3]) const
+  {
     for(int k = 0; k < 3; ++k) {
       const double bound_low = double(c[k]) * cell_, bound_high = double(c[k] + 1) * cell_;
       const double slack = 16 * std::numeric_limits<double>::epsilon() * (std::abs(x[k]) + std::abs(bound_low) + std::abs(bound_high));
@@ -171,13 +193,36 @@ private:
       gap[k][1] = 0;
       gap[k][2] = high > 0 ? high * high : 0;
     }
-    const double bound = reach * reach;
+  }
+  // visit(d2, i) for the points i of p's cell, then of the cells around it that are not farther
+  // than the squared distance visit returned last (the cells' gaps as in any_near)
+  template <class Visit>
+  void nearest_in_reach(const Point_3& p, Visit visit) const
+  {
+    const double x[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    const Cell c = cell_of(x[0], x[1], x[2]);
+    double bound = std::numeric_limits<double>::infinity();
+    auto in = [&](const Cell& k) {
+      if(const Slot* s = find(k))
+        for(std::size_t i = s->begin; i < s->end; ++i) bound = visit(CGAL::to_double(CGAL::squared_distance(p, points_[i])), i);
+    };
+    scan(x, c, [&](const Cell& k) { in(k); return false; }, [&] { return bound; });
+  }
+  // in(k) for the cell c of the point x, then for each of the 26 cells k around it whose squared
+  // distance to x is not above bound() (asked again before each), until in returns true; returns
+  // whether it did
+  template <class In, class Bound>
+  bool scan(const double x[3], const Cell& c, In in, Bound bound) const
+  {
+    if(in(c)) return true;
+    double gap[3][3];
+    gaps(x, c, gap);
     for(long long dx = -1; dx <= 1; ++dx)
       for(long long dy = -1; dy <= 1; ++dy) {
         const double gxy = gap[0][dx + 1] + gap[1][dy + 1];
-        if(gxy > bound) continue;
+        if(gxy > bound()) continue;
         for(long long dz = -1; dz <= 1; ++dz)
-          if((dx != 0 || dy != 0 || dz != 0) && !(gxy + gap[2][dz + 1] > bound) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
+          if((dx != 0 || dy != 0 || dz != 0) && !(gxy + gap[2][dz + 1] > bound()) && in(Cell{{c[0] + dx, c[1] + dy, c[2] + dz}})) return true;
       }
     return false;
   }
@@ -189,6 +234,7 @@ private:
 
   double cell_;
   std::vector<Point_3> points_;   // sorted by cell
+  std::vector<std::size_t> place_;   // each one's place among the points given
   std::vector<Slot> table_;
   std::size_t mask_ = 0, number_of_cells_ = 0;
 };
