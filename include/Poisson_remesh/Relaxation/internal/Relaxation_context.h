@@ -179,7 +179,9 @@ public:
   typedef typename GeomTraits::Vector_3 Vector_3;
 
 private:
-  typedef CGAL::AABB_face_graph_triangle_primitive<InputMesh> Face_primitive;
+  // (each triangle kept in its primitive: the input does not change, and a projection then reads
+  // no halfedge and no vertex point of the input)
+  typedef CGAL::AABB_face_graph_triangle_primitive<InputMesh, CGAL::Default, CGAL::Tag_true, CGAL::Tag_true> Face_primitive;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, Face_primitive>> Face_tree;
 
 public:
