@@ -1099,6 +1099,13 @@ TEST_CASE("the triangles around the nearest vertex bound the distance to the mes
   CGAL::Bbox_3 box;
   for(const Point& p : points) box += p.bbox();
   CHECK(surface.squared_distance_bound(Point(box.xmax() + 10 * length, box.ymax(), box.zmax())) == std::numeric_limits<double>::infinity());
+  // a vertex on no triangle is no point of the surface: a point on it is not near by it
+  const Point lone(box.xmax() + 0.5 * length, 0.5 * (box.ymin() + box.ymax()), 0.5 * (box.zmin() + box.zmax()));
+  std::vector<Point> with_lone = points;
+  with_lone.push_back(lone);
+  const PR::Postprocessing::internal::Near_surface<Point> lonely(with_lone, triangles, 2 * length, CGAL::Sequential_tag());
+  CHECK(lonely.squared_distance_bound(lone) >= CGAL::to_double(tree.squared_distance(lone)) * (1 - 1e-12));
+  CHECK(lonely.squared_distance_bound(lone, 1e-6 * length * length) > 1e-6 * length * length);
 }
 
 // internal/closest_point.h's box query (the fidelity insertions' faces near a split triangle): the

@@ -100,7 +100,7 @@ struct Fidelity_input_points
     for(const auto& x : midpoints) all.push_back(x.first);
     for(const auto& x : centroids) all.push_back(x.first);
     near.emplace(all, tol, ConcurrencyTag());
-    // (the vertices' grid's cell: the mean edge length, so that a point on the input finds its
+    // (the vertices' grid's cell: twice the mean edge length, so that a point on the input finds its
     // nearest vertex)
     double length = 0;
     for(const auto& x : midpoints) length += std::sqrt(CGAL::to_double(CGAL::squared_distance(vertex_points[x.second[0]], vertex_points[x.second[1]])));

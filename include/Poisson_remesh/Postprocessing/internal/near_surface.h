@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -34,10 +35,10 @@ class Near_surface
 public:
   /// `points`: the mesh's vertices; `triangles`: its triangles, as places among `points`; `cell`:
   /// the grid's cell, about the length of an edge (a point farther than a cell from every vertex
-  /// is answered "no")
+  /// of a triangle is answered "no")
   template <class ConcurrencyTag>
   Near_surface(std::vector<Point_3> points, std::vector<std::array<std::size_t, 3>> triangles, double cell, ConcurrencyTag tag)
-    : vertices_(points, cell, tag), points_(std::move(points)), triangles_(std::move(triangles)), first_(points_.size() + 1, 0)
+    : points_(std::move(points)), triangles_(std::move(triangles)), first_(points_.size() + 1, 0)
   {
     // each vertex's triangles, one array for all (first_[v] to first_[v + 1])
     for(const auto& t : triangles_)
@@ -47,6 +48,14 @@ public:
     std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
     for(std::size_t t = 0; t < triangles_.size(); ++t)
       for(std::size_t v : triangles_[t]) around_[next[v]++] = t;
+    // the grid of the vertices of a triangle (a vertex on none is no point of the surface)
+    std::vector<Point_3> corners;
+    for(std::size_t v = 0; v < points_.size(); ++v)
+      if(first_[v + 1] > first_[v]) {
+        vertex_of_.push_back(v);
+        corners.push_back(points_[v]);
+      }
+    vertices_.emplace(corners, cell, tag);
   }
 
   /// the squared distance from `p` to the triangles around the vertex nearest to it, at least the
@@ -54,8 +63,9 @@ public:
   /// a vertex or a triangle at a squared distance of `enough` or less stops there and returns it
   double squared_distance_bound(const Point_3& p, double enough = -1) const
   {
-    const auto [v, d2] = vertices_.nearest(p, enough);
-    if(v == std::size_t(-1) || d2 <= enough) return d2;
+    const auto [place, d2] = vertices_->nearest(p, enough);
+    if(place == std::size_t(-1) || d2 <= enough) return d2;
+    const std::size_t v = vertex_of_[place];
     double best = d2;
     for(std::size_t k = first_[v]; k < first_[v + 1] && best > enough; ++k) {
       const std::array<std::size_t, 3>& t = triangles_[around_[k]];
@@ -65,10 +75,11 @@ public:
   }
 
 private:
-  Poisson_remesh::internal::Near_points<Point_3> vertices_;   // (made first: from the points before they move)
   std::vector<Point_3> points_;
   std::vector<std::array<std::size_t, 3>> triangles_;
   std::vector<std::size_t> first_, around_;
+  std::vector<std::size_t> vertex_of_;   // (the vertex of each place of the grid)
+  std::optional<Poisson_remesh::internal::Near_points<Point_3>> vertices_;
 };
 
 } // namespace internal
