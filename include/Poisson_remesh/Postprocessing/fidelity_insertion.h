@@ -22,6 +22,7 @@
 #include <Poisson_remesh/internal/memory_free_order.h>
 #include <Poisson_remesh/internal/near_points.h>
 #include <Poisson_remesh/internal/parallel.h>
+#include <Poisson_remesh/internal/self_intersections.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -100,8 +101,8 @@ struct Fidelity_input_points
     for(const auto& x : midpoints) all.push_back(x.first);
     for(const auto& x : centroids) all.push_back(x.first);
     near.emplace(all, tol, ConcurrencyTag());
-    // (the vertices' grid's cell: twice the mean edge length, so that a point on the input finds its
-    // nearest vertex)
+    // (the vertices' grid's cell: twice the mean edge length, or the tolerance if larger, so that a
+    // point on the input finds its nearest vertex)
     double length = 0;
     for(const auto& x : midpoints) length += std::sqrt(CGAL::to_double(CGAL::squared_distance(vertex_points[x.second[0]], vertex_points[x.second[1]])));
     std::vector<std::array<std::size_t, 3>> triangles;
@@ -152,11 +153,12 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::vector<std::pair<double, Point_3>> far;
   std::vector<Point_3> queries;
   std::vector<double> d2s;
-  // (a point within the tolerance of a triangle around the mesh's vertex nearest to it is near the
-  // mesh: its squared distance to those triangles is given, a bound at most tol^2, and the tree is
-  // not asked; the far points, and their distances, are the same)
+  // (a point within the tolerance of a vertex of the mesh, or of a triangle around the vertex
+  // nearest to it, is near the mesh: that squared distance is given, a bound at most tol^2, and the
+  // tree is not asked; the far points, and their distances, are the same)
   // (the vertices' points, each face's vertices by their places and its centroid, computed on
-  // TBB's threads with CGAL::Parallel_tag; the vertices' grid's cell is twice the mean edge length)
+  // TBB's threads with CGAL::Parallel_tag; the vertices' grid's cell is twice the mean edge length,
+  // or the tolerance if larger)
   typedef typename GT::vertex_descriptor vertex_descriptor;
   const std::vector<vertex_descriptor> mesh_vertices(vertices(m).begin(), vertices(m).end());
   const std::vector<face_descriptor> mesh_faces(faces(m).begin(), faces(m).end());
@@ -231,8 +233,8 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // a vertex of the mesh: on the input, and near c)
   // (a point within the tolerance of a point of the input -- one of its vertices, edge midpoints
   // and triangle centroids listed above, queried or not -- or of a triangle of the input around the
-  // input's vertex nearest to it is near the input: its squared distance is given as tol^2, a
-  // bound, and it is not projected)
+  // input's vertex nearest to it (Near_surface) is near the input: its squared distance is given as
+  // tol^2, a bound, and it is not projected)
   const Poisson_remesh::internal::Near_points<Point_3>& near_input = *on_input.near;
   const internal::Near_surface<Point_3>& near_input_triangles = *on_input.near_triangles;
   auto nearest_on_input = [&](const std::vector<std::pair<Point_3, Point_3>>& points) {
@@ -305,15 +307,23 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::vector<vertex_descriptor> mine;
   std::size_t done = 0;
   const std::size_t cap = std::max<std::size_t>(1, std::size_t(s.max_insertions_share * double(num_vertices(m))));
-  // the intersections there already, found before each insertion: the pairs among the faces whose
-  // boxes meet the box of the triangle it splits grown to hold its point (the box of the three
-  // triangles it becomes), leaving out the faces the insertions before it split or made (those are
-  // not in the tree). The check after the insertions takes a pair that holds a new vertex for new
-  // unless it is here, and every such pair that was there before the insertions is: it holds a
-  // split triangle as it was and a face that met it (no search of the whole mesh)
+  // the intersections there already that the check after the insertions asks about, found before
+  // each insertion: the pairs of the triangle it splits, as it is, with the faces whose boxes meet
+  // that triangle's box grown to hold its point (the box of the three triangles it becomes). The
+  // faces the insertions before it split are left out (the tree still holds them, reading their
+  // new triangles; such a pair was found when the first of the two was split), and the faces they
+  // made are not in the tree. The check takes a pair for new unless it is here, but only takes back
+  // the new vertices of its faces: a pair that holds one holds a split triangle, whose pairs from
+  // before the insertions are all here (no search of the whole mesh). The rule of
+  // internal/self_intersections.h: a flat triangle is a pair with itself and meets no other; two
+  // others whose boxes meet, by the exact test.
   typedef std::decay_t<decltype(Poisson_remesh::internal::intersecting_pairs(m))> Pairs;
   Pairs before;
   std::vector<face_descriptor> split, around;
+  auto flat = [&](face_descriptor g) {
+    const auto h = halfedge(g, m);
+    return CGAL::collinear(get(vpm, source(h, m)), get(vpm, target(h, m)), get(vpm, target(next(h, m), m)));
+  };
   for(const auto& fp : far) {
     if(mine.size() >= cap) break;
     const face_descriptor f = Poisson_remesh::internal::closest_point_and_primitive(tree(), fp.second).second;
@@ -322,13 +332,16 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
     touched.insert(f);
     for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
       if(!is_border(opposite(h, m), m)) touched.insert(face(opposite(h, m), m));
-    around.clear();
-    Poisson_remesh::internal::primitives_meeting_box(tree(), Poisson_remesh::internal::face_box(f, m) + fp.second.bbox(), std::back_inserter(around));
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    around.erase(std::remove_if(around.begin(), around.end(), [&](face_descriptor g) { return std::binary_search(split.begin(), split.end(), g); }), around.end());
-    const Pairs here = Poisson_remesh::internal::intersecting_pairs<ConcurrencyTag>(m, around);
-    before.insert(before.end(), here.begin(), here.end());
+    if(flat(f)) before.emplace_back(f, f);
+    else {
+      const CGAL::Bbox_3 box = Poisson_remesh::internal::face_box(f, m);
+      around.clear();
+      Poisson_remesh::internal::primitives_meeting_box(tree(), box + fp.second.bbox(), std::back_inserter(around));
+      for(face_descriptor g : around)
+        if(g != f && !std::binary_search(split.begin(), split.end(), g) && !flat(g) && CGAL::do_overlap(box, Poisson_remesh::internal::face_box(g, m)) &&
+           Poisson_remesh::internal::self_intersection_detail::faces_intersect(f, g, m, vpm))
+          before.emplace_back((std::min)(f, g), (std::max)(f, g));
+    }
     split.insert(std::upper_bound(split.begin(), split.end(), f), f);
     const auto hnew = CGAL::Euler::add_center_vertex(halfedge(f, m), m);
     const auto v = target(hnew, m);
@@ -340,7 +353,14 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   // an insertion that makes the mesh cut itself is taken back (its vertex still has degree 3)
   std::sort(mine.begin(), mine.end());
   std::vector<vertex_descriptor> undo;
-  ctx.for_vertices_of_new_intersections(m, before, Poisson_remesh::internal::faces_around(m, mine), [&](vertex_descriptor x) {
+  const auto now = Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, mine));
+  // (a mesh folded everywhere there is left as it was: the search stops at twice the face count
+  // and could miss a new crossing)
+  if(now.size() > num_faces(m)) {
+    for(vertex_descriptor v : mine) CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
+    return 0;
+  }
+  ctx.for_vertices_of_pairs_not_in(m, now, before, [&](vertex_descriptor x) {
     if(std::binary_search(mine.begin(), mine.end(), x)) undo.push_back(x);
   });
   // (the retries below split edges one after the other, each seeing the splits before it: they

@@ -1,8 +1,9 @@
 // Poisson_remesh/internal/near_points.h
 //
 // Points in a grid of cubic cells (internal): which of them lie within a cell's size of a
-// point or a triangle, and which is the nearest within a cell's size. Used by the remakes (internal/regrading.h, internal/local_remake.h) and the
-// fidelity insertions (Postprocessing/fidelity_insertion.h).
+// point or a triangle, and which is the nearest within a cell's size. Used by the remakes
+// (internal/regrading.h, internal/local_remake.h) and the fidelity insertions
+// (Postprocessing/fidelity_insertion.h, Postprocessing/internal/near_surface.h).
 
 #ifndef POISSON_REMESH_INTERNAL_NEAR_POINTS_H
 #define POISSON_REMESH_INTERNAL_NEAR_POINTS_H
@@ -114,12 +115,9 @@ public:
   {
     std::size_t best = std::size_t(-1);
     double best_d2 = std::numeric_limits<double>::infinity();
-    bool done = false;
     nearest_in_reach(p, [&](double d2, std::size_t i) {
-      if(done) return -1.;
       if(d2 < best_d2 || (d2 == best_d2 && place_[i] < best)) { best_d2 = d2; best = place_[i]; }
-      if(best_d2 <= enough) { done = true; return -1.; }   // (no cell is nearer than -1: the search ends)
-      return best_d2;
+      return best_d2 <= enough ? -1. : best_d2;   // (no cell is nearer than -1: the search ends)
     });
     return {best, best_d2};
   }
@@ -203,8 +201,8 @@ private:
     const Cell c = cell_of(x[0], x[1], x[2]);
     double bound = std::numeric_limits<double>::infinity();
     auto in = [&](const Cell& k) {
-      if(const Slot* s = find(k))
-        for(std::size_t i = s->begin; i < s->end; ++i) bound = visit(CGAL::to_double(CGAL::squared_distance(p, points_[i])), i);
+      if(const Slot* s = find(k))   // (a bound under 0: visit asks for no more points)
+        for(std::size_t i = s->begin; i < s->end && !(bound < 0); ++i) bound = visit(CGAL::to_double(CGAL::squared_distance(p, points_[i])), i);
     };
     scan(x, c, [&](const Cell& k) { in(k); return false; }, [&] { return bound; });
   }

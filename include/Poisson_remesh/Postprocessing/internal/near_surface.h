@@ -34,8 +34,8 @@ class Near_surface
 
 public:
   /// `points`: the mesh's vertices; `triangles`: its triangles, as places among `points`; `cell`:
-  /// the grid's cell, about the length of an edge (a point farther than a cell from every vertex
-  /// of a triangle is answered "no")
+  /// the grid's cell (the fidelity insertions take twice the mean edge length): the vertices within
+  /// a cell's size of a point are always among those searched, farther ones may not be
   template <class ConcurrencyTag>
   Near_surface(std::vector<Point_3> points, std::vector<std::array<std::size_t, 3>> triangles, double cell, ConcurrencyTag tag)
     : points_(std::move(points)), triangles_(std::move(triangles)), first_(points_.size() + 1, 0)
@@ -59,8 +59,9 @@ public:
   }
 
   /// the squared distance from `p` to the triangles around the vertex nearest to it, at least the
-  /// squared distance to the mesh (infinity when no vertex lies within a cell); a search that meets
-  /// a vertex or a triangle at a squared distance of `enough` or less stops there and returns it
+  /// squared distance to the mesh (infinity when the cells searched hold no vertex); a search that
+  /// meets a vertex or a triangle at a squared distance of `enough` or less stops there and returns
+  /// it (that vertex need not be the nearest)
   double squared_distance_bound(const Point_3& p, double enough = -1) const
   {
     const auto [place, d2] = vertices_->nearest(p, enough);
