@@ -6,7 +6,7 @@
 // is exact. The fidelity insertions ask this of every point they measure, in every pass: on a
 // mesh that follows its input, a point's nearest point on the mesh is nearly always on a triangle
 // around its nearest vertex, and a grid lookup and a few point-triangle distances cost less than
-// a tree search (and, when every point is answered so, than building the tree at all).
+// a tree search (and, when every point is answered so, than making the tree at all).
 
 #ifndef POISSON_REMESH_POSTPROCESSING_INTERNAL_NEAR_SURFACE_H
 #define POISSON_REMESH_POSTPROCESSING_INTERNAL_NEAR_SURFACE_H
