@@ -38,6 +38,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <set>
 #include <random>
 #include <vector>
 
@@ -318,6 +319,92 @@ TEST_CASE("fidelity insertions: a crest finer than the spacing, cut across by th
       CHECK(after == Approx(before));
     }
   }
+}
+
+// The fidelity insertions look for the crossings already there near each insertion only, not in
+// the whole mesh: a crossing next to an insertion -- in a face beside the one it splits -- is
+// there before and after, and must take back nothing. The mesh of the crest test above, once as
+// it is and once with a small triangle standing through a face beside one that an insertion
+// splits: the same insertions, and no crossing but that one.
+TEST_CASE("fidelity insertions: a crossing already there beside an insertion takes nothing back", "[operators][fidelity][intersections]")
+{
+  const std::size_t fine = 42, coarse = 7;
+  auto ridge = [](double x) { return 0.1 * std::exp(-(x - 0.5) * (x - 0.5) / (2 * 0.03 * 0.03)); };
+  auto lift = [&](Mesh x) {
+    for(V v : vertices(x)) x.point(v) = Point(x.point(v).x(), x.point(v).y(), ridge(x.point(v).x()));
+    return x;
+  };
+  const Mesh in = lift(square(fine));
+  const auto features = PR::detect_features(in, PR::parameters::feature_policy(PR::Feature_policy::none));
+  const Context ctx(in, features);
+  P::Fidelity_settings s;
+  s.max_insertions_share = 0.25;
+  auto insert = [&](Mesh& m) {   // (one pass: the points inserted, sorted)
+    std::vector<V> added;
+    PR::Relaxation_statistics stats;
+    P::insert_far_input_points(ctx, m, no_feature, [](V, bool) {}, s, stats, added);
+    std::vector<Point> points;
+    for(V x : added) points.push_back(m.point(x));
+    std::sort(points.begin(), points.end());
+    return points;
+  };
+  Mesh plain = lift(square(coarse));
+  const std::vector<Point> alone = insert(plain);
+  REQUIRE(alone.size() >= 4);
+  // the face of the coarse mesh under the first point inserted on the crest, and a face beside it
+  // away from the crest
+  Mesh m = lift(square(coarse));
+  const auto on_crest = std::find_if(alone.begin(), alone.end(), [](const Point& p) { return p.z() > 0.09; });
+  REQUIRE(on_crest != alone.end());
+  const Point p = *on_crest;
+  auto corners = [&](Mesh::Face_index f) {
+    std::vector<Point> c;
+    for(V v : vertices_around_face(halfedge(f, m), m)) c.push_back(m.point(v));
+    return c;
+  };
+  auto over = [&](Mesh::Face_index f, const Point& q) {   // (q's projection on z = 0 lies in f's)
+    const auto c = corners(f);
+    auto side = [&](const Point& a, const Point& b) { return (b.x() - a.x()) * (q.y() - a.y()) - (b.y() - a.y()) * (q.x() - a.x()); };
+    return side(c[0], c[1]) >= 0 && side(c[1], c[2]) >= 0 && side(c[2], c[0]) >= 0;
+  };
+  Mesh::Face_index under = Mesh::null_face();
+  for(auto f : faces(m))
+    if(over(f, p)) under = f;
+  REQUIRE(under != Mesh::null_face());
+  // the face beside it across its edge parallel to the crest (at x = ex; beside it, z depends on x alone)
+  Mesh::Face_index beside = Mesh::null_face();
+  double ex = 0, yc = 0, sx = 0;
+  for(auto h : halfedges_around_face(halfedge(under, m), m)) {
+    const Point &s0 = m.point(source(h, m)), &t0 = m.point(target(h, m));
+    if(is_border(opposite(h, m), m) || s0.x() != t0.x()) continue;
+    beside = face(opposite(h, m), m);
+    ex = s0.x();
+    yc = 0.5 * (s0.y() + t0.y());
+    sx = m.point(target(next(opposite(h, m), m), m)).x() > ex ? 1 : -1;
+  }
+  REQUIRE(beside != Mesh::null_face());
+  // the standing triangle: through the face beside, 0.02 from the edge, and leaning over the face
+  // under the insertion without meeting it (0.024 above the edge where it passes over it, against
+  // 0.006 for the edge): its box meets that face's, so the check after the insertion meets it too
+  const double t = 0.02 * double(coarse), zb = (1 - t) * ridge(ex) + t * ridge(ex + sx / double(coarse));
+  const V a = m.add_vertex(Point(ex + sx * 0.02, yc, zb - 0.004));
+  const V b = m.add_vertex(Point(ex + sx * 0.02, yc + 0.005, zb + 0.004));
+  const V c = m.add_vertex(Point(ex - sx * 0.005, yc, 0.03));
+  const Mesh::Face_index standing = m.add_face(a, b, c);
+  REQUIRE(standing != Mesh::null_face());
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
+  CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(crossings));
+  REQUIRE(crossings.size() == 1);
+  REQUIRE((crossings[0].first == beside || crossings[0].second == beside));
+  const std::vector<Point> with_crossing = insert(m);
+  // an insertion on the crest into the face beside it is kept (which of the crest's equally far
+  // points it is may change: their distances to the mesh, read in a tree that holds one more
+  // triangle, may differ in the last bit, and so their order)
+  CHECK(std::any_of(with_crossing.begin(), with_crossing.end(), [&](const Point& q) { return q.z() > 0.09 && over(under, q); }));
+  crossings.clear();
+  CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(crossings));
+  CHECK(crossings.size() == 1);
+  for(const auto& [f, g] : crossings) CHECK((f == standing || g == standing));
 }
 
 TEST_CASE("fidelity insertions: a border that turns tighter than the spacing gets vertices on its curve", "[operators][fidelity]")
@@ -1106,6 +1193,15 @@ TEST_CASE("the triangles around the nearest vertex bound the distance to the mes
   const PR::Postprocessing::internal::Near_surface<Point> lonely(with_lone, triangles, 2 * length, CGAL::Sequential_tag());
   CHECK(lonely.squared_distance_bound(lone) >= CGAL::to_double(tree.squared_distance(lone)) * (1 - 1e-12));
   CHECK(lonely.squared_distance_bound(lone, 1e-6 * length * length) > 1e-6 * length * length);
+  // built on TBB's threads, the same grid: the same bounds
+  const PR::Postprocessing::internal::Near_surface<Point> parallel(points, triangles, 2 * length, CGAL::Parallel_tag());
+  std::mt19937 again(7);
+  for(int i = 0; i < 2000; ++i) {
+    const Point v = points[std::size_t(again()) % points.size()];
+    const Point q(v.x() + length * unit(again), v.y() + length * unit(again), v.z() + length * unit(again));
+    CHECK(parallel.squared_distance_bound(q) == surface.squared_distance_bound(q));
+    CHECK(parallel.squared_distance_bound(q, 0.01 * length * length) == surface.squared_distance_bound(q, 0.01 * length * length));
+  }
 }
 
 // internal/closest_point.h's box query (the fidelity insertions' faces near a split triangle): the

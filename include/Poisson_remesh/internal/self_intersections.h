@@ -334,6 +334,25 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
     if(candidates.size() == block) flush();
   };
   auto consider_meeting = [&](std::uint32_t a, std::uint32_t b) { if(!shares_safe_corner(a, b)) take(a, b); };
+  // (the grid's faces cell by cell, each with its box, its vertices and whether the faces around
+  // each of them project one-to-one: the search reads them in that order from one array, where
+  // `filed` only names them)
+  struct Filed_face
+  {
+    CGAL::Bbox_3 box;
+    std::array<vertex_descriptor, 3> corners;
+    std::array<bool, 3> safe;
+    std::uint32_t index;
+  };
+  std::vector<Filed_face> in_cells;
+  auto is_candidate_in_cells = [&](const Filed_face& a, const Filed_face& b) {
+    const CGAL::Bbox_3 &x = a.box, &y = b.box;
+    if(x.xmax() < y.xmin() || y.xmax() < x.xmin() || x.ymax() < y.ymin() || y.ymax() < x.ymin() || x.zmax() < y.zmin() || y.zmax() < x.zmin()) return false;
+    for(int k = 0; k < 3; ++k)
+      if(a.safe[k])
+        for(int l = 0; l < 3; ++l) if(a.corners[k] == b.corners[l]) return false;
+    return true;
+  };
   auto consider = [&](std::uint32_t a, std::uint32_t b) { if(is_candidate(a, b)) take(a, b); };
   try {
     if(!grid) {
@@ -346,6 +365,8 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       CGAL::box_self_intersection_d<CGAL::Sequential_tag>(sweep.begin(), sweep.end(), [&](const Box* a, const Box* b) { consider_meeting(a->info(), b->info()); },
                                                          std::ptrdiff_t(2000));
     } else {
+      in_cells.reserve(filed.size());
+      for(const auto& x : filed) in_cells.push_back(Filed_face{boxes[x.second], corners[x.second], corner_safe[x.second], x.second});
       // each cell against itself and one neighbour of each opposite pair (13 of its 26: the
       // opposite one takes this cell in its own turn), found in an open-addressing table of the
       // occupied cells
@@ -375,7 +396,7 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
       auto cell_pairs = [&](const Cell& c, auto emit) {
         for(std::uint32_t i = c.first; i < c.end; ++i)
           for(std::uint32_t j = i + 1; j < c.end; ++j)
-            if(is_candidate(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
+            if(is_candidate_in_cells(in_cells[i], in_cells[j])) emit(in_cells[i].index, in_cells[j].index);
         const std::int64_t x = std::int64_t(c.key >> 42), y = std::int64_t((c.key >> 21) & mask), z = std::int64_t(c.key & mask);
         for(const auto& d : one_of_each_pair) {
           const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
@@ -383,7 +404,7 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
           if(other == nullptr) continue;
           for(std::uint32_t i = c.first; i < c.end; ++i)
             for(std::uint32_t j = other->first; j < other->end; ++j)
-              if(is_candidate(filed[i].second, filed[j].second)) emit(filed[i].second, filed[j].second);
+              if(is_candidate_in_cells(in_cells[i], in_cells[j])) emit(in_cells[i].index, in_cells[j].index);
         }
       };
       if constexpr(is_parallel<ConcurrencyTag>()) {
