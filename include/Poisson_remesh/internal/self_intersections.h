@@ -367,6 +367,11 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
     } else {
       in_cells.reserve(filed.size());
       for(const auto& x : filed) in_cells.push_back(Filed_face{boxes[x.second], corners[x.second], corner_safe[x.second], x.second});
+      // (each cell's box, of its faces' boxes: a face whose box misses a neighbouring cell's meets
+      // none of its faces' boxes, and its pairs there are passed over without a test each)
+      std::vector<CGAL::Bbox_3> cell_box(cells.size());
+      for(std::size_t c = 0; c < cells.size(); ++c)
+        for(std::uint32_t i = cells[c].first; i < cells[c].end; ++i) cell_box[c] += in_cells[i].box;
       // each cell against itself and one neighbour of each opposite pair (13 of its 26: the
       // opposite one takes this cell in its own turn), found in an open-addressing table of the
       // occupied cells
@@ -402,9 +407,13 @@ intersecting_face_pairs(const Mesh& m, const FaceRange& range, const VPM& vpm,
           const std::uint64_t key = (std::uint64_t(x + d[0]) << 42) | (std::uint64_t(y + d[1]) << 21) | std::uint64_t(z + d[2]);
           const Cell* other = find(key);
           if(other == nullptr) continue;
-          for(std::uint32_t i = c.first; i < c.end; ++i)
+          const CGAL::Bbox_3& other_box = cell_box[std::size_t(other - cells.data())];
+          if(!CGAL::do_overlap(cell_box[std::size_t(&c - cells.data())], other_box)) continue;
+          for(std::uint32_t i = c.first; i < c.end; ++i) {
+            if(!CGAL::do_overlap(in_cells[i].box, other_box)) continue;
             for(std::uint32_t j = other->first; j < other->end; ++j)
               if(is_candidate_in_cells(in_cells[i], in_cells[j])) emit(in_cells[i].index, in_cells[j].index);
+          }
         }
       };
       if constexpr(is_parallel<ConcurrencyTag>()) {
