@@ -354,8 +354,8 @@ std::size_t insert_far_input_points(const Context& ctx, Mesh& m, IsFeatureEdge i
   std::sort(mine.begin(), mine.end());
   std::vector<vertex_descriptor> undo;
   const auto now = Poisson_remesh::internal::intersecting_pairs_near(m, Poisson_remesh::internal::faces_around(m, mine));
-  // (a mesh folded everywhere there is left as it was: the search stops at twice the face count
-  // and could miss a new crossing)
+  // (a mesh that cuts itself everywhere there is left as it was: the search stops at twice the
+  // face count and could miss a new intersection)
   if(now.size() > num_faces(m)) {
     for(vertex_descriptor v : mine) CGAL::Euler::remove_center_vertex(halfedge(v, m), m);
     return 0;
