@@ -447,6 +447,7 @@ static std::vector<Row> load_rows(std::istream& in, Options& o)
     if(line.find("\"factor\": ") != std::string::npos) o.factor = number(line, "factor");
     if(line.find("\"gamma\": ") != std::string::npos) o.curvature.gamma = number(line, "gamma");
     if(line.find("\"edge_ratio\": ") != std::string::npos) o.curvature.edge_ratio = number(line, "edge_ratio");
+    if(line.find("\"beside_creases\": ") != std::string::npos) o.curvature.beside_creases = field(line, "beside_creases") == "true";
     if(line.find("{\"mesh\": ") == std::string::npos) continue;
     Row r;
     r.mesh = field(line, "mesh");
@@ -502,6 +503,7 @@ int main(int argc, char** argv)
       else if(a == "--adaptive") adaptive = true;
       else if(a == "--gamma") options.curvature.gamma = std::stod(value());
       else if(a == "--edge-ratio") options.curvature.edge_ratio = std::stod(value());
+      else if(a == "--creases-count") options.curvature.beside_creases = false;
       else if(a == "--contenders") contenders = split(value());
       else if(a == "--save-meshes") options.save_meshes = value();
       else if(a == "--iterations") options.iterations = unsigned(std::stoul(value()));
@@ -521,7 +523,7 @@ int main(int argc, char** argv)
         std::cout << "usage: corpus_benchmark [--data DIR] [--meshes a,b] [--min-vertices 500] [--max-vertices 40000]\n"
                      "         [--seed 1] [--jobs 1] [--timeout 900] [--peer-iterations 10] [--peer-sharp-angle 60]\n"
                      "         [--calibrate 3] [--ablation all|op,op] [--markdown FILE] [--json FILE]\n"
-                     "         [--merge A.json,B.json] [--factor 1] [--adaptive [--gamma 1] [--edge-ratio 5]]\n"
+                     "         [--merge A.json,B.json] [--factor 1] [--adaptive [--gamma 1] [--edge-ratio 5] [--creases-count]]\n"
                      "         [--contenders cgal,ours,...] [--save-meshes DIR] [--iterations K]\n"
                      "         [--remakes K]\n"
                      "Remeshes every CGAL data mesh within the vertex range at its own vertex count, ours beside\n"
@@ -530,7 +532,8 @@ int main(int argc, char** argv)
                      "instead (a row of a later file replaces the same mesh and contender of an earlier one: a\n"
                      "row run again). --factor F: every contender at F times the input's vertex count.\n"
                      "--adaptive: also ours with the curvature density (Curvature_density's defaults, or\n"
-                     "--gamma and --edge-ratio), calibrated like ours, and its RMS and Hausdorff distances\n"
+                     "--gamma and --edge-ratio; --creases-count: Curvature_density::beside_creases off),\n"
+                     "calibrated like ours, and its RMS and Hausdorff distances\n"
                      "against ours with the uniform density. --contenders runs only those named (cgal, ours,\n"
                      "ours-adaptive, ours-local: the remakes of the regions at fault alone, ours-<step>), to\n"
                      "--merge with other runs. --save-meshes DIR writes each output as DIR/<mesh>_<contender>.off\n"
@@ -751,7 +754,7 @@ int main(int argc, char** argv)
     }
     auto change = [](double after, double before) { return fmt(100 * (after / before - 1), 1) + "%"; };
     md << "\nCurvature_density: gamma " << fmt(options.curvature.gamma, 2) << ", edge ratio " << fmt(options.curvature.edge_ratio, 1)
-       << ". " << pairs << " meshes with both within 5% of the target (left out: " << off_target.size();
+       << (options.curvature.beside_creases ? ", beside the creases" : ", the creases counted") << ". " << pairs << " meshes with both within 5% of the target (left out: " << off_target.size();
     for(std::size_t i = 0; i < off_target.size(); ++i) md << (i ? ", " : ": ") << off_target[i];
     md << "); the floor holds on " << passes_a << " with the adaptive density.\n\n"
        << "| | uniform | adaptive | change of the medians | median of the per-mesh ratios | meshes where adaptive is lower |\n|---|---:|---:|---:|---:|---:|\n"
@@ -812,7 +815,8 @@ int main(int argc, char** argv)
     js.precision(10);
     js << "{\n  \"machine\": \"" << machine_description() << "\",\n  \"seed\": " << options.seed << ",\n  \"peer_iterations\": "
        << options.peer_iterations << ",\n  \"peer_sharp_angle\": " << options.peer_sharp_angle << ",\n  \"jobs\": " << options.jobs << ",\n  \"factor\": " << options.factor
-       << ",\n  \"gamma\": " << options.curvature.gamma << ",\n  \"edge_ratio\": " << options.curvature.edge_ratio << ",\n  \"rows\": [\n";
+       << ",\n  \"gamma\": " << options.curvature.gamma << ",\n  \"edge_ratio\": " << options.curvature.edge_ratio
+       << ",\n  \"beside_creases\": " << (options.curvature.beside_creases ? "true" : "false") << ",\n  \"rows\": [\n";
     for(std::size_t i = 0; i < rows.size(); ++i) {
       const Row& r = rows[i];
       const Figures& f = r.f;

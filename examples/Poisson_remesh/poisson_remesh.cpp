@@ -402,9 +402,13 @@ int remesh_one(const Options& o, const std::string& in, const std::string& out, 
     }
     if(!o.density_svg_file.empty()) {
       // samples per unit area (Eq. 1) at each input vertex
+      // (the radii the remesh samples with: the density field at the target count, a curvature
+      // density measured beside the feature edges)
       const std::vector<double> radii = with_density([&](const auto& field) {
-        return PR::vertex_disk_radii(input, input.points(), PR::vertex_densities(field, input, input.points()), target,
-                                     o.density.min_edge, o.density.max_edge);
+        return PR::disk_radii(input, PR::parameters::target_vertex_count(std::size_t(std::llround(target)))
+                                       .feature_policy(o.features ? PR::Feature_policy::detect : PR::Feature_policy::none)
+                                       .sharp_angle(o.sharp_angle)
+                                       .density(field));
       });
       const double c = PR::paper_rho * PR::paper_rho / (2 * std::sqrt(3.0));
       PR::Density_map_view view;

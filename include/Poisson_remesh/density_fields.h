@@ -31,6 +31,8 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/Kernel_traits.h>
 
+#include <boost/property_map/function_property_map.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -58,6 +60,12 @@ struct Curvature_density
   double edge_ratio = 5.0;
   /// passes of Laplacian smoothing of the density (Fig. 6)
   unsigned int smoothing = 8;
+  /// (beyond the paper) where the input bends at a crease the remesh keeps -- a feature edge,
+  /// sampled along its curve and kept as an edge -- the output follows the crease and loses no
+  /// distance to the input across it: its dihedral angle is no curvature to pay for, and the
+  /// curvature is measured on each side of it (vertex_densities() with the crease edges; the
+  /// sampler and the remesher pass their feature edges). False: the creases count like any bend.
+  bool beside_creases = true;
 };
 
 /// The user's density at each vertex (relative; scaled to the target vertex count).
@@ -130,40 +138,134 @@ inline void limit_radius_growth(std::vector<double>& r, const Edge_adjacency& ad
 }
 
 // per vertex: the larger of the RMS of the principal curvatures of a degree-2 jet fitted to the
-// 2-ring (CGAL::Monge_via_jet_fitting) and the largest normal curvature across an incident edge
-template <class TriangleMesh, class VPM>
-std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
+// 2-ring (CGAL::Monge_via_jet_fitting) and the largest normal curvature across an incident edge.
+// `is_crease(e)`: the edges where the surface may bend without it counting (see
+// Curvature_density::beside_creases): no normal curvature is taken across them, and a jet whose
+// 2-ring would reach over one is fitted on each side of it instead (the faces reached from the
+// vertex's faces across the other edges), the vertex taking the largest of its sides' curvatures.
+template <class TriangleMesh, class VPM, class IsCrease>
+std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease is_crease)
 {
   typedef typename boost::property_traits<VPM>::value_type Point_3;
   typedef typename CGAL::Kernel_traits<Point_3>::Kernel K;
   typedef CGAL::Monge_via_jet_fitting<K, CGAL::Simple_cartesian<double>, CGAL::Eigen_svd> Fitting;
-  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
   auto vim = CGAL::get_initialized_vertex_index_map(tm);
+  auto fim = CGAL::get_initialized_face_index_map(tm);
   std::vector<double> kappa(vertex_index_bound(tm), 0.0);
   std::vector<int> stamp(kappa.size(), -1);
-  std::vector<Point_3> pts;
-  std::vector<vertex_descriptor> ring, outer;
+  // the vertices on a crease
+  std::vector<char> on_crease(kappa.size(), 0);
+  for(auto e : edges(tm))
+    if(!is_border(e, tm) && is_crease(e)) on_crease[get(vim, source(halfedge(e, tm), tm))] = on_crease[get(vim, target(halfedge(e, tm), tm))] = 1;
+  std::vector<int> face_stamp;
   int k = 0;
+  std::vector<Point_3> pts;
+  // the RMS curvature of the jet through `pts`, if there are enough of them
+  auto fitted = [&](double& out) {
+    if(pts.size() < 6) return false;
+    Fitting fit;
+    const auto form = fit(pts.begin(), pts.end(), 2, 2);
+    const double k1 = CGAL::to_double(form.principal_curvatures(0)), k2 = CGAL::to_double(form.principal_curvatures(1));
+    if(!(std::isfinite(k1) && std::isfinite(k2))) return false;
+    out = std::sqrt(0.5 * (k1 * k1 + k2 * k2));
+    return true;
+  };
+  auto add_point = [&](vertex_descriptor w) {
+    if(stamp[get(vim, w)] != k) { stamp[get(vim, w)] = k; pts.push_back(get(vpm, w)); }
+  };
+  std::vector<vertex_descriptor> ring, outer;
+  std::vector<face_descriptor> star, side, next_faces;
   for(vertex_descriptor v : vertices(tm)) {
+    if(halfedge(v, tm) == GT::null_halfedge()) continue;
+    // the 2-ring (3-ring when the 2-ring is too small for a degree-2 jet); `over` when it spreads
+    // from a vertex on a crease, reaching past it
     ++k;
-    if(halfedge(v, tm) == boost::graph_traits<TriangleMesh>::null_halfedge()) continue;
-    // the 2-ring (3-ring when the 2-ring is too small for a degree-2 jet)
     pts.clear();
     ring.assign(1, v);
     stamp[get(vim, v)] = k;
     pts.push_back(get(vpm, v));
+    bool over = false;
     for(int depth = 0; depth < 3 && (depth < 2 || pts.size() < 10); ++depth) {
       outer.clear();
-      for(vertex_descriptor u : ring)
+      for(vertex_descriptor u : ring) {
+        if(on_crease[get(vim, u)]) over = true;
         for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(u, tm), tm))
           if(stamp[get(vim, w)] != k) { stamp[get(vim, w)] = k; outer.push_back(w); pts.push_back(get(vpm, w)); }
+      }
       ring.swap(outer);
     }
-    if(pts.size() < 6) continue;
-    Fitting fit;
-    const auto form = fit(pts.begin(), pts.end(), 2, 2);
-    const double k1 = CGAL::to_double(form.principal_curvatures(0)), k2 = CGAL::to_double(form.principal_curvatures(1));
-    if(std::isfinite(k1) && std::isfinite(k2)) kappa[get(vim, v)] = std::sqrt(0.5 * (k1 * k1 + k2 * k2));
+    double value = 0;
+    if(!over) {
+      if(fitted(value)) kappa[get(vim, v)] = value;
+      continue;
+    }
+    // each side: the faces around v joined across edges that are no crease, and the faces reached
+    // from them across such edges (two steps, up to four while there are fewer than ten points)
+    if(face_stamp.empty()) {   // (by face index: one past the largest)
+      std::size_t bound = 0;
+      for(face_descriptor f : faces(tm)) bound = (std::max)(bound, std::size_t(get(fim, f)) + 1);
+      face_stamp.assign(bound, -1);
+    }
+    star.clear();
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
+      if(!is_border(h, tm)) star.push_back(face(h, tm));
+    std::vector<char> taken(star.size(), 0);
+    double best = 0;
+    for(std::size_t s = 0; s < star.size(); ++s) {
+      if(taken[s]) continue;
+      ++k;   // (a new stamp for this side's points and faces)
+      pts.clear();
+      add_point(v);
+      side.assign(1, star[s]);
+      taken[s] = 1;
+      face_stamp[get(fim, star[s])] = k;
+      // the side's faces around v
+      for(std::size_t i = 0; i < side.size(); ++i)
+        for(auto h : CGAL::halfedges_around_face(halfedge(side[i], tm), tm)) {
+          if(is_border(edge(h, tm), tm) || is_crease(edge(h, tm))) continue;
+          if(source(h, tm) != v && target(h, tm) != v) continue;
+          const face_descriptor g = face(opposite(h, tm), tm);
+          const auto it = std::find(star.begin(), star.end(), g);
+          if(it == star.end() || taken[std::size_t(it - star.begin())]) continue;
+          taken[std::size_t(it - star.begin())] = 1;
+          face_stamp[get(fim, g)] = k;
+          side.push_back(g);
+        }
+      for(face_descriptor f : side)
+        for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, tm), tm)) add_point(w);
+      std::vector<face_descriptor> frontier = side;
+      for(int depth = 0; depth < 4 && (depth < 2 || pts.size() < 10) && !frontier.empty(); ++depth) {
+        next_faces.clear();
+        for(face_descriptor f : frontier)
+          for(auto h : CGAL::halfedges_around_face(halfedge(f, tm), tm)) {
+            if(is_border(edge(h, tm), tm) || is_crease(edge(h, tm))) continue;
+            const face_descriptor g = face(opposite(h, tm), tm);
+            if(face_stamp[get(fim, g)] == k) continue;
+            face_stamp[get(fim, g)] = k;
+            next_faces.push_back(g);
+            for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(g, tm), tm)) add_point(w);
+          }
+        frontier.swap(next_faces);
+      }
+      if(fitted(value)) best = (std::max)(best, value);
+    }
+    // and the crease's own bend, where v is on one crease curve: its feature samples are as far
+    // apart as the radius there asks (the turn at v over the mean length of its two crease edges)
+    std::vector<vertex_descriptor> along;
+    for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
+      if(!is_border(edge(h, tm), tm) && is_crease(edge(h, tm))) along.push_back(source(h, tm));
+    if(along.size() == 2) {
+      const auto a = get(vpm, along[0]) - get(vpm, v), b = get(vpm, along[1]) - get(vpm, v);
+      const double la = std::sqrt(CGAL::to_double(a.squared_length())), lb = std::sqrt(CGAL::to_double(b.squared_length()));
+      if(la > 0 && lb > 0) {
+        const double turn = std::acos(std::max(-1.0, std::min(1.0, -CGAL::to_double(a * b) / (la * lb))));
+        best = (std::max)(best, turn / (0.5 * (la + lb)));
+      }
+    }
+    kappa[get(vim, v)] = best;
   }
   // a jet smooths over rims and creases narrower than the 2-ring (thin protrusions of a coarse
   // input), where a remesh loses most: the normal curvature across each edge (the angle between
@@ -173,7 +275,7 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
     namespace PMP = CGAL::Polygon_mesh_processing;
     for(auto e : edges(tm)) {
       auto h = halfedge(e, tm);
-      if(is_border_edge(h, tm)) continue;
+      if(is_border_edge(h, tm) || is_crease(e)) continue;
       auto f1 = face(h, tm), f2 = face(opposite(h, tm), tm);
       auto n1 = PMP::compute_face_normal(f1, tm, CGAL::parameters::vertex_point_map(vpm));
       auto n2 = PMP::compute_face_normal(f2, tm, CGAL::parameters::vertex_point_map(vpm));
@@ -187,6 +289,13 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
     }
   }
   return kappa;
+}
+
+// the same without creases
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
+{
+  return vertex_curvatures(tm, vpm, [](typename boost::graph_traits<TriangleMesh>::edge_descriptor) { return false; });
 }
 
 template <class TriangleMesh>
@@ -247,12 +356,16 @@ std::vector<double> vertex_densities(const Point_density<Function>& field, const
 /// Curvature density: (RMS curvature)^gamma, clamped so that the edge lengths it asks for span at
 /// most `edge_ratio` (the flattest 2% and the most curved 2% are clamped), Laplacian-smoothed.
 /// min_edge / max_edge, when given, are applied by vertex_disk_radii() (they are absolute).
-template <class TriangleMesh, class VPM>
-std::vector<double> vertex_densities(const Curvature_density& field, const TriangleMesh& tm, VPM vpm)
+/// With `creases`, a readable edge property map of `bool` (true on the edges the remesh keeps as
+/// feature edges), the curvature is measured beside them (Curvature_density::beside_creases).
+template <class TriangleMesh, class VPM, class EdgeIsCreaseMap>
+std::vector<double> vertex_densities(const Curvature_density& field, const TriangleMesh& tm, VPM vpm, EdgeIsCreaseMap creases)
 {
   if(!(field.gamma >= 0)) throw std::invalid_argument("Curvature_density: gamma must be >= 0");
   if(!(field.edge_ratio >= 1)) throw std::invalid_argument("Curvature_density: edge_ratio must be >= 1");
-  std::vector<double> kappa = internal::vertex_curvatures(tm, vpm);
+  std::vector<double> kappa = internal::vertex_curvatures(tm, vpm, [&](typename boost::graph_traits<TriangleMesh>::edge_descriptor e) {
+    return field.beside_creases && bool(get(creases, e));
+  });
   for(double& k : kappa) if(!std::isfinite(k)) k = 0;
   double hi = internal::quantile(kappa, 0.98);
   if(!(hi > 0) || !std::isfinite(std::pow(hi, field.gamma))) return std::vector<double>(kappa.size(), 1.0);   // flat: uniform
@@ -262,6 +375,14 @@ std::vector<double> vertex_densities(const Curvature_density& field, const Trian
   for(std::size_t i = 0; i < kappa.size(); ++i) d[i] = std::min(dmax, std::max(dmin, std::pow(kappa[i], field.gamma)));
   internal::laplacian_smooth(tm, d, field.smoothing);
   return d;
+}
+
+/// The same without creases: every bend counts.
+template <class TriangleMesh, class VPM>
+std::vector<double> vertex_densities(const Curvature_density& field, const TriangleMesh& tm, VPM vpm)
+{
+  return vertex_densities(field, tm, vpm, boost::make_function_property_map<typename boost::graph_traits<TriangleMesh>::edge_descriptor>(
+                                            [](typename boost::graph_traits<TriangleMesh>::edge_descriptor) { return false; }));
 }
 
 /*!

@@ -62,6 +62,17 @@ double sampling_radius_from_parameters(const TriangleMesh& tm, VPM vpm, const Na
   return disk_radius_from_vertex_count(area, n);
 }
 
+// the features as the sampler sees them at radius r: detect_features() with
+// `minimum_feature_length` defaulting to feature_length_in_radii * r
+template <class TriangleMesh, class NamedParameters>
+Feature_set<TriangleMesh> detect_features_at_radius(const TriangleMesh& tm, double r, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const double length = choose_parameter(get_parameter(np, internal_np::minimum_feature_length), feature_length_in_radii * r);
+  return detect_features(tm, Named_function_parameters<double, internal_np::minimum_feature_length_t, NamedParameters>(length, np));
+}
+
 // the disk radius at each vertex for the `density` named parameter; empty for uniform density.
 // The field is scaled to the target vertex count (target_vertex_count, else the count that
 // target_edge_length or sampling_radius gives with uniform density, else the input's count).
@@ -80,25 +91,30 @@ std::vector<double> vertex_radii_from_parameters(const TriangleMesh& tm, VPM vpm
       const double r = sampling_radius_from_parameters(tm, vpm, np);
       n = paper_rho * paper_rho * area / (2 * std::sqrt(3.0) * r * r);   // Eq. 1 solved for N
     }
-    double min_edge = 0, max_edge = 0;
     if constexpr(std::is_same<typename std::decay<decltype(density)>::type, Curvature_density>::value) {
-      min_edge = density.min_edge;
-      max_edge = density.max_edge;
+      // the feature edges that are no border: the remesh keeps them, the curvature density is
+      // measured beside them (Curvature_density::beside_creases); found as the sampler finds
+      // them, at the radius of the uniform density (the adaptive one's median is not known yet)
+      auto eim = CGAL::get_initialized_edge_index_map(tm);
+      std::vector<bool> crease;
+      if(density.beside_creases) {
+        const Feature_set<TriangleMesh> features = detect_features_at_radius(tm, sampling_radius_from_parameters(tm, vpm, np), np);
+        for(auto e : edges(tm))
+          if(features.is_feature(e) && !is_border(e, tm)) {
+            const std::size_t i = get(eim, e);
+            if(crease.size() <= i) crease.resize(i + 1, false);
+            crease[i] = true;
+          }
+      }
+      const auto creases = boost::make_function_property_map<typename boost::graph_traits<TriangleMesh>::edge_descriptor>(
+        [&](typename boost::graph_traits<TriangleMesh>::edge_descriptor e) { const std::size_t i = get(eim, e); return i < crease.size() && crease[i]; });
+      return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm, creases), n, density.min_edge, density.max_edge);
+    } else {
+      return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm), n);
     }
-    return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm), n, min_edge, max_edge);
   }
 }
 
-// the features as the sampler sees them at radius r: detect_features() with
-// `minimum_feature_length` defaulting to feature_length_in_radii * r
-template <class TriangleMesh, class NamedParameters>
-Feature_set<TriangleMesh> detect_features_at_radius(const TriangleMesh& tm, double r, const NamedParameters& np)
-{
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  const double length = choose_parameter(get_parameter(np, internal_np::minimum_feature_length), feature_length_in_radii * r);
-  return detect_features(tm, Named_function_parameters<double, internal_np::minimum_feature_length_t, NamedParameters>(length, np));
-}
 
 // A feature curve whose samples are refused -- closer than the spacing to an earlier sample --
 // this many times in a row runs beside another curve (the corners and the curve's own samples
@@ -278,6 +294,25 @@ struct Poisson_disk_sampler
     return internal::poisson_disk_sample(tm, vpm, features, radius, seed, out, vertex_radii);
   }
 };
+
+/*!
+  The disk radius at each vertex of `tm` (indexed by `CGAL::get_initialized_vertex_index_map(tm)`)
+  that poisson_disk_sample() and poisson_remesh() sample with for the named parameters `np`: the
+  size (`sampling_radius`, `target_edge_length`, `target_vertex_count`), the `density` field
+  scaled to that size by Eq. 1 (a Curvature_density measured beside the feature edges that the
+  feature parameters give), and `vertex_point_map`; the same radius everywhere for a uniform
+  density. (poisson_remesh() may then refine it around pointed tips and where a remake is asked.)
+*/
+template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
+std::vector<double> disk_radii(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  std::vector<double> radii = internal::vertex_radii_from_parameters(tm, vpm, np);
+  if(radii.empty()) radii.assign(internal::vertex_index_bound(tm), internal::sampling_radius_from_parameters(tm, vpm, np));
+  return radii;
+}
 
 /*!
   computes a maximal geodesic Poisson-disk sample set of `tm` (a triangle mesh, any FaceGraph)

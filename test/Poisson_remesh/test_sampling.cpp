@@ -552,7 +552,8 @@ std::vector<Sample> adaptive_sample(const Mesh& m, const Field& field, double n,
 {
   std::vector<Sample> s;
   auto r = PR::poisson_disk_sample(m, std::back_inserter(s), PR::parameters::target_vertex_count(n).random_seed(seed).density(field));
-  vertex_radius = PR::vertex_disk_radii(m, m.points(), PR::vertex_densities(field, m, m.points()), n);
+  // (the radii the sampler draws with: a curvature density is measured beside the feature edges)
+  vertex_radius = PR::disk_radii(m, PR::parameters::target_vertex_count(n).density(field));
   if(result) *result = r;
   return s;
 }
@@ -656,7 +657,7 @@ TEST_CASE("the parallel mode samples by slabs: separated and maximal, the same s
   SECTION("elephant with the curvature density") {
     Mesh m;
     PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), m);
-    std::vector<double> vr = PR::vertex_disk_radii(m, m.points(), PR::vertex_densities(PR::Curvature_density(), m, m.points()), 2500);
+    std::vector<double> vr = PR::disk_radii(m, PR::parameters::target_vertex_count(2500).density(PR::Curvature_density()));
     std::vector<Sample> s;
     {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(2));
@@ -681,6 +682,79 @@ TEST_CASE("the curvature density stays finite on degenerate faces (found by fuzz
   for(double x : d) { CHECK(std::isfinite(x)); CHECK(x > 0); }
   const std::vector<double> r = PR::vertex_disk_radii(m, m.points(), d, 20);
   for(double x : r) { CHECK(std::isfinite(x)); CHECK(x > 0); }
+}
+
+TEST_CASE("the curvature density measures beside the creases the remesh keeps", "[sampling][adaptive]")
+{
+  // a flat plate (x in [0, 1]) meeting a quarter cylinder of radius 1/2 at a right-angled crease
+  // (x = 1): the plate has no curvature, the cylinder 2; the crease bends the surface by 90
+  // degrees over no length, which a sampled and kept feature edge follows exactly
+  const int nx = 20, ny = 20, na = 16;
+  const double R = 0.5;
+  std::vector<Point> pts;
+  for(int j = 0; j <= ny; ++j) {
+    for(int i = 0; i <= nx; ++i) pts.push_back(Point(double(i) / nx, double(j) / ny, 0));
+    for(int i = 1; i <= na; ++i) {
+      const double t = 0.5 * CGAL_PI * i / na;
+      pts.push_back(Point(1 + R - R * std::cos(t), double(j) / ny, -R * std::sin(t)));
+    }
+  }
+  const int row = nx + 1 + na;
+  std::vector<std::vector<std::size_t>> tris;
+  for(int j = 0; j < ny; ++j)
+    for(int i = 0; i + 1 < row; ++i) {
+      const std::size_t a = std::size_t(j * row + i), b = a + 1, c = a + std::size_t(row), d = c + 1;
+      tris.push_back({a, b, d});
+      tris.push_back({a, d, c});
+    }
+  Mesh m;
+  PMP::polygon_soup_to_polygon_mesh(pts, tris, m);
+  REQUIRE(is_valid_polygon_mesh(m));
+  auto on_crease = [&](Mesh::Vertex_index v) { return m.point(v).x() == 1 && m.point(v).z() == 0; };
+  auto crease = boost::make_function_property_map<Mesh::Edge_index>([&](Mesh::Edge_index e) {
+    return !is_border(e, m) && on_crease(source(halfedge(e, m), m)) && on_crease(target(halfedge(e, m), m));
+  });
+  // the mean density (or radius) of the plate's vertices within 0.15 of the crease, and of the
+  // cylinder's vertices 30 degrees or more from it
+  auto means = [&](const std::vector<double>& value) {
+    double plate = 0, cylinder = 0;
+    int np = 0, nc = 0;
+    for(auto v : vertices(m)) {
+      const Point& p = m.point(v);
+      if(p.z() == 0 && p.x() < 1 && p.x() > 0.85) { plate += value[std::size_t(v)]; ++np; }
+      if(p.z() < -R * 0.5 + 1e-9) { cylinder += value[std::size_t(v)]; ++nc; }
+    }
+    REQUIRE(np > 0);
+    REQUIRE(nc > 0);
+    return std::make_pair(plate / np, cylinder / nc);
+  };
+  PR::Curvature_density field;
+  {
+    // beside the creases: the plate next to the crease is no denser than the cylinder
+    const auto [plate, cylinder] = means(PR::vertex_densities(field, m, m.points(), crease));
+    CHECK(plate < 0.8 * cylinder);
+  }
+  {
+    // the crease's bend counted (beside_creases off, or no crease given): the plate next to it
+    // is the densest part of the surface
+    field.beside_creases = false;
+    const auto [plate, cylinder] = means(PR::vertex_densities(field, m, m.points(), crease));
+    CHECK(plate > 2 * cylinder);
+    const auto [plate2, cylinder2] = means(PR::vertex_densities(PR::Curvature_density(), m, m.points()));
+    CHECK(plate2 == plate);
+    CHECK(cylinder2 == cylinder);
+  }
+  // the sampler's and the remesher's radii: the creases are their feature edges
+  {
+    const auto r = PR::internal::vertex_radii_from_parameters(m, m.points(), PR::parameters::target_vertex_count(800).density(PR::Curvature_density()));
+    const auto [plate, cylinder] = means(r);
+    CHECK(plate > 1.1 * cylinder);
+    PR::Curvature_density off;
+    off.beside_creases = false;
+    const auto r_off = PR::internal::vertex_radii_from_parameters(m, m.points(), PR::parameters::target_vertex_count(800).density(off));
+    const auto [plate_off, cylinder_off] = means(r_off);
+    CHECK(plate_off < cylinder_off);
+  }
 }
 
 TEST_CASE("the same seed gives the same samples, another seed others", "[sampling]")

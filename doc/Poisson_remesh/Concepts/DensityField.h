@@ -19,7 +19,9 @@ into disk radii (Eq. 1, scaled to the target count, gradient limited to 1/2).
 A new model is a type with an overload of `vertex_densities` in namespace `Poisson_remesh`.
 
 \cgalHasModel `Poisson_remesh::Uniform_density` (the default: every part alike)
-\cgalHasModel `Poisson_remesh::Curvature_density` (gamma, min_edge, max_edge, edge_ratio, smoothing)
+\cgalHasModel `Poisson_remesh::Curvature_density` (gamma, min_edge, max_edge, edge_ratio, smoothing,
+beside_creases; its overload `vertex_densities(field, tm, vpm, creases)` takes the feature edges
+too, which the sampler and the remesher pass: no curvature is counted across them)
 \cgalHasModel `Poisson_remesh::Vertex_density<VertexDensityMap>` (made by `vertex_density(map)`)
 \cgalHasModel `Poisson_remesh::Point_density<Function>` (made by `point_density(f)`, `f(point)`)
 */
