@@ -251,7 +251,7 @@ public:
   {
     thread_local std::vector<Iso_arc> arcs;   // (per thread, its storage reused from one call to the next)
     arcs.clear();
-    extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs);
+    extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs, R);
     return chain_iso_arcs(arcs);
   }
 
@@ -930,17 +930,23 @@ private:
   /// curves; a piece is kept when its midpoint lies in the face, in the
   /// generator's wedge, and no other generator gives a distance below the
   /// level there (artificial arcs are trimmed).
+  ///
+  /// `level_bound`: the level's largest value in any face (infinite: not known). A pseudo-source
+  /// at that distance or farther is no generator of its faces (collect_generators() takes those
+  /// closer than the face's level), whose other generators bring them in: its faces are not
+  /// visited for it.
   template <class LevelOfFace>
-  void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs) const
+  void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs, double level_bound = internal::kInf) const
   {
     // faces to examine: those with a distance generator (collect_generators): the faces that
-    // windows enter, the faces around reached pseudo-sources and a source vertex, the source's
-    // faces (sorted list, no O(|F|) storage: iso_curve stays cheap and thread-safe for small
-    // disks; the buffers are per thread, to reuse their storage from one call to the next)
+    // windows enter, the faces around reached pseudo-sources closer than the level and a source
+    // vertex, the source's faces (sorted list, no O(|F|) storage: iso_curve stays cheap and
+    // thread-safe for small disks; the buffers are per thread, to reuse their storage from one
+    // call to the next)
     thread_local std::vector<int> faces_to_visit;
     faces_to_visit.clear();
     for(int v : m_touched_vertices)
-      if(m->pseudo[v] || m_dist[v] == 0.)
+      if((m->pseudo[v] && m_dist[v] < level_bound) || m_dist[v] == 0.)
         for(int i = m->vf_start[v]; i < m->vf_start[v + 1]; ++i) faces_to_visit.push_back(m->vf_list[i] / 3);
     for(int e : m_touched_edges)
       for(int id : m_edge_windows[e]) faces_to_visit.push_back(m_windows[id].slot / 3);
