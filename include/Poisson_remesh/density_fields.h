@@ -10,9 +10,11 @@
 //     tensors because CGAL ships it and a jet is less sensitive to skinny triangles), raised to the
 //     normal curvature across the sharpest incident edge where a thin rim escapes the jet, through
 //     a gamma curve, clamped between a minimum and a maximum edge length, Laplacian-smoothed;
+//     given the creases the remesh keeps (its feature edges), it is measured beside them;
 //   - Vertex_density<Map>: the user's value per vertex (a readable vertex property map);
 //   - Point_density<F>: the user's functor on 3D points, evaluated at the vertices.
-// Entry points: vertex_densities(field, tm, vpm) and vertex_disk_radii(tm, vpm, densities,
+// Entry points: vertex_densities(field, tm, vpm) (for Curvature_density also with the creases,
+// vertex_densities(field, tm, vpm, creases)) and vertex_disk_radii(tm, vpm, densities,
 // target_vertex_count), which scales the field so that Eq. 1 predicts the target count and limits
 // the radius gradient to 1/2 (the available boundary of §5.1 needs |grad r| < 1).
 
@@ -63,8 +65,9 @@ struct Curvature_density
   /// (beyond the paper) where the input bends at a crease the remesh keeps -- a feature edge,
   /// sampled along its curve and kept as an edge -- the output follows the crease and loses no
   /// distance to the input across it: its dihedral angle is no curvature to pay for, and the
-  /// curvature is measured on each side of it (vertex_densities() with the crease edges; the
-  /// sampler and the remesher pass their feature edges). False: the creases count like any bend.
+  /// curvature is measured on each side of it, a curved crease's own bend counting (with the
+  /// crease edges given to vertex_densities(); the sampler and the remesher give the feature
+  /// edges they detect at the uniform density's radius). False: the creases count like any bend.
   bool beside_creases = true;
 };
 
@@ -289,13 +292,6 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
     }
   }
   return kappa;
-}
-
-// the same without creases
-template <class TriangleMesh, class VPM>
-std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm)
-{
-  return vertex_curvatures(tm, vpm, [](typename boost::graph_traits<TriangleMesh>::edge_descriptor) { return false; });
 }
 
 template <class TriangleMesh>

@@ -20,6 +20,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -95,19 +96,10 @@ std::vector<double> vertex_radii_from_parameters(const TriangleMesh& tm, VPM vpm
       // the feature edges that are no border: the remesh keeps them, the curvature density is
       // measured beside them (Curvature_density::beside_creases); found as the sampler finds
       // them, at the radius of the uniform density (the adaptive one's median is not known yet)
-      auto eim = CGAL::get_initialized_edge_index_map(tm);
-      std::vector<bool> crease;
-      if(density.beside_creases) {
-        const Feature_set<TriangleMesh> features = detect_features_at_radius(tm, sampling_radius_from_parameters(tm, vpm, np), np);
-        for(auto e : edges(tm))
-          if(features.is_feature(e) && !is_border(e, tm)) {
-            const std::size_t i = get(eim, e);
-            if(crease.size() <= i) crease.resize(i + 1, false);
-            crease[i] = true;
-          }
-      }
+      std::optional<Feature_set<TriangleMesh>> features;
+      if(density.beside_creases) features.emplace(detect_features_at_radius(tm, sampling_radius_from_parameters(tm, vpm, np), np));
       const auto creases = boost::make_function_property_map<typename boost::graph_traits<TriangleMesh>::edge_descriptor>(
-        [&](typename boost::graph_traits<TriangleMesh>::edge_descriptor e) { const std::size_t i = get(eim, e); return i < crease.size() && crease[i]; });
+        [&](typename boost::graph_traits<TriangleMesh>::edge_descriptor e) { return features && features->is_feature(e) && !is_border(e, tm); });
       return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm, creases), n, density.min_edge, density.max_edge);
     } else {
       return vertex_disk_radii(tm, vpm, vertex_densities(density, tm, vpm), n);

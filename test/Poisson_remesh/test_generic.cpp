@@ -86,6 +86,16 @@ TEST_CASE("every entry point runs on a plain Polyhedron_3 (items without ids)", 
   const PR::Quality_report q = PR::quality_report(out, in);
   CHECK(q.min_angle > 20);   // (a genericity test: the quality tests are elsewhere)
   CHECK(*q.hausdorff < 0.05);
+  // the curvature density (measured beside the feature edges) on it: the radii of a Surface_mesh
+  // read from the same file, vertex for vertex
+  Mesh sm;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), sm);
+  REQUIRE(num_vertices(sm) == num_vertices(in));
+  const auto np = PR::parameters::target_vertex_count(400).density(PR::Curvature_density());
+  const std::vector<double> radii = PR::disk_radii(in, np), expected = PR::disk_radii(sm, np);
+  REQUIRE(radii.size() == expected.size());
+  // (the same up to rounding: the meshes list their neighbours, edges and faces in other orders)
+  for(std::size_t i = 0; i < radii.size(); ++i) CHECK(radii[i] == Approx(expected[i]).epsilon(1e-6));
 }
 
 TEST_CASE("a Polyhedron_3 remesh is the same in every run of a seed, wherever its elements lie in memory", "[generic][polyhedron][determinism]")

@@ -735,6 +735,20 @@ TEST_CASE("the curvature density measures beside the creases the remesh keeps", 
     CHECK(plate < 0.8 * cylinder);
   }
   {
+    // a vertex on the crease takes its curved side's curvature, not its flat one's (unsmoothed)
+    PR::Curvature_density unsmoothed;
+    unsmoothed.smoothing = 0;
+    const std::vector<double> d = PR::vertex_densities(unsmoothed, m, m.points(), crease);
+    double on = 0;
+    int n = 0;
+    for(auto v : vertices(m))
+      if(on_crease(v) && m.point(v).y() > 0 && m.point(v).y() < 1) { on += d[std::size_t(v)]; ++n; }
+    REQUIRE(n == ny - 1);
+    const auto [plate, cylinder] = means(d);
+    CHECK(on / n > 0.3 * cylinder);
+    CHECK(on / n > 5 * plate);
+  }
+  {
     // the crease's bend counted (beside_creases off, or no crease given): the plate next to it
     // is the densest part of the surface
     field.beside_creases = false;
@@ -746,12 +760,12 @@ TEST_CASE("the curvature density measures beside the creases the remesh keeps", 
   }
   // the sampler's and the remesher's radii: the creases are their feature edges
   {
-    const auto r = PR::internal::vertex_radii_from_parameters(m, m.points(), PR::parameters::target_vertex_count(800).density(PR::Curvature_density()));
+    const auto r = PR::disk_radii(m, PR::parameters::target_vertex_count(800).density(PR::Curvature_density()));
     const auto [plate, cylinder] = means(r);
     CHECK(plate > 1.1 * cylinder);
     PR::Curvature_density off;
     off.beside_creases = false;
-    const auto r_off = PR::internal::vertex_radii_from_parameters(m, m.points(), PR::parameters::target_vertex_count(800).density(off));
+    const auto r_off = PR::disk_radii(m, PR::parameters::target_vertex_count(800).density(off));
     const auto [plate_off, cylinder_off] = means(r_off);
     CHECK(plate_off < cylinder_off);
   }

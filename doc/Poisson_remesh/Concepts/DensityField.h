@@ -21,7 +21,8 @@ A new model is a type with an overload of `vertex_densities` in namespace `Poiss
 \cgalHasModel `Poisson_remesh::Uniform_density` (the default: every part alike)
 \cgalHasModel `Poisson_remesh::Curvature_density` (gamma, min_edge, max_edge, edge_ratio, smoothing,
 beside_creases; its overload `vertex_densities(field, tm, vpm, creases)` takes the feature edges
-too, which the sampler and the remesher pass: no curvature is counted across them)
+too, which the sampler and the remesher pass: no normal curvature is counted across them, a
+curved crease's own bend is)
 \cgalHasModel `Poisson_remesh::Vertex_density<VertexDensityMap>` (made by `vertex_density(map)`)
 \cgalHasModel `Poisson_remesh::Point_density<Function>` (made by `point_density(f)`, `f(point)`)
 */
