@@ -183,7 +183,7 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
   std::vector<face_descriptor> star, side, next_faces;
   for(vertex_descriptor v : vertices(tm)) {
     if(halfedge(v, tm) == GT::null_halfedge()) continue;
-    // the 2-ring (3-ring when the 2-ring is too small for a degree-2 jet); `over` when it spreads
+    // the 2-ring (3-ring when the 2-ring has too few points for a degree-2 jet); `over` when it spreads
     // from a vertex on a crease, reaching past it
     ++k;
     pts.clear();

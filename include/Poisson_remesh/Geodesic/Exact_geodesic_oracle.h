@@ -941,7 +941,7 @@ private:
     // faces to examine: those with a distance generator (collect_generators): the faces that
     // windows enter, the faces around reached pseudo-sources closer than the level and a source
     // vertex, the source's faces (sorted list, no O(|F|) storage: iso_curve stays cheap and
-    // thread-safe for small disks; the buffers are per thread, to reuse their storage from one
+    // thread-safe for disks of few faces; the buffers are per thread, to reuse their storage from one
     // call to the next)
     thread_local std::vector<int> faces_to_visit;
     faces_to_visit.clear();
