@@ -180,7 +180,9 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
     if(stamp[get(vim, w)] != k) { stamp[get(vim, w)] = k; pts.push_back(get(vpm, w)); }
   };
   std::vector<vertex_descriptor> ring, outer;
-  std::vector<face_descriptor> star, side, next_faces;
+  std::vector<face_descriptor> incident, side, frontier, next_faces;   // (one side's faces, and the steps from them)
+  std::vector<char> taken;   // (which faces of `incident` a side holds)
+  std::vector<vertex_descriptor> along;   // (v's neighbours along a crease)
   for(vertex_descriptor v : vertices(tm)) {
     if(halfedge(v, tm) == GT::null_halfedge()) continue;
     // the 2-ring (3-ring when the 2-ring has too few points for a degree-2 jet); `over` when it spreads
@@ -212,34 +214,34 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
       for(face_descriptor f : faces(tm)) bound = (std::max)(bound, std::size_t(get(fim, f)) + 1);
       face_stamp.assign(bound, -1);
     }
-    star.clear();
+    incident.clear();
     for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
-      if(!is_border(h, tm)) star.push_back(face(h, tm));
-    std::vector<char> taken(star.size(), 0);
+      if(!is_border(h, tm)) incident.push_back(face(h, tm));
+    taken.assign(incident.size(), 0);
     double best = 0;
-    for(std::size_t s = 0; s < star.size(); ++s) {
+    for(std::size_t s = 0; s < incident.size(); ++s) {
       if(taken[s]) continue;
       ++k;   // (a new stamp for this side's points and faces)
       pts.clear();
       add_point(v);
-      side.assign(1, star[s]);
+      side.assign(1, incident[s]);
       taken[s] = 1;
-      face_stamp[get(fim, star[s])] = k;
+      face_stamp[get(fim, incident[s])] = k;
       // the side's faces around v
       for(std::size_t i = 0; i < side.size(); ++i)
         for(auto h : CGAL::halfedges_around_face(halfedge(side[i], tm), tm)) {
           if(is_border(edge(h, tm), tm) || is_crease(edge(h, tm))) continue;
           if(source(h, tm) != v && target(h, tm) != v) continue;
           const face_descriptor g = face(opposite(h, tm), tm);
-          const auto it = std::find(star.begin(), star.end(), g);
-          if(it == star.end() || taken[std::size_t(it - star.begin())]) continue;
-          taken[std::size_t(it - star.begin())] = 1;
+          const auto it = std::find(incident.begin(), incident.end(), g);
+          if(it == incident.end() || taken[std::size_t(it - incident.begin())]) continue;
+          taken[std::size_t(it - incident.begin())] = 1;
           face_stamp[get(fim, g)] = k;
           side.push_back(g);
         }
       for(face_descriptor f : side)
         for(vertex_descriptor w : CGAL::vertices_around_face(halfedge(f, tm), tm)) add_point(w);
-      std::vector<face_descriptor> frontier = side;
+      frontier = side;
       for(int depth = 0; depth < 4 && (depth < 2 || pts.size() < 10) && !frontier.empty(); ++depth) {
         next_faces.clear();
         for(face_descriptor f : frontier)
@@ -257,7 +259,7 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
     }
     // and the crease's own bend, where v is on one crease curve: its feature samples are as far
     // apart as the radius there asks (the turn at v over the mean length of its two crease edges)
-    std::vector<vertex_descriptor> along;
+    along.clear();
     for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
       if(!is_border(edge(h, tm), tm) && is_crease(edge(h, tm))) along.push_back(source(h, tm));
     if(along.size() == 2) {

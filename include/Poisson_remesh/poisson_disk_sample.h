@@ -293,7 +293,7 @@ struct Poisson_disk_sampler
   size (`sampling_radius`, `target_edge_length`, `target_vertex_count`), the `density` field
   scaled to that size by Eq. 1 (a Curvature_density measured beside the feature edges that the
   feature parameters give), and `vertex_point_map`; the same radius everywhere for a uniform
-  density. (poisson_remesh() may then refine it around pointed tips and where a remake is asked.)
+  density. (poisson_remesh() may then lower it around pointed tips and where a remake is asked.)
 */
 template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
 std::vector<double> disk_radii(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
