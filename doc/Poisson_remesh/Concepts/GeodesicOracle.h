@@ -33,7 +33,10 @@ refer to `(v0, v1, v2)` in this order (the convention of
 The sampler (`Boundary_sampler`, and through it `poisson_disk_sample()` and `poisson_remesh()`
 with the named parameter `geodesic_oracle`) calls exactly the members below, and keeps copies of
 the oracle it is given (a model is `CopyConstructible`; the copies propagate independently).
-`iso_curve(r0, vertex_radius)` is needed for adaptive density only.
+`iso_curve(r0, vertex_radius)` is needed for adaptive density only. The two `iso_curve_outside()`
+members are optional: when a model has them (and the `BoundaryCurve` has `has_arcs_in()`), the
+sampler leaves out of each new curve the faces it knows to lie inside earlier samples' disks,
+whose arcs it would drop; without them it asks for the whole curve, with the same samples.
 
 `Poisson_remesh::Approximate_geodesic_oracle` answers the same distance queries cheaply, but its
 iso-curves are straight segments, which the circular available boundary does not take: it is not
@@ -137,6 +140,15 @@ public:
   /// must be at least r0 + max r(x) over the region d(x) <= r0 + r(x).
   template <class VertexRadius>
   std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const;
+
+  /// optional: `iso_curve(R)` without the arcs in the faces `f` for which `skip(f)` is true; the
+  /// chains break where they enter such a face
+  template <class SkipFace>
+  std::vector<Iso_curve> iso_curve_outside(double R, SkipFace skip) const;
+
+  /// optional: `iso_curve(r0, vertex_radius)` likewise without the faces `skip` tells
+  template <class VertexRadius, class SkipFace>
+  std::vector<Iso_curve> iso_curve_outside(double r0, VertexRadius vertex_radius, SkipFace skip) const;
 
   /// @}
 };

@@ -360,6 +360,19 @@ public:
   void update(const Chains& chains, std::size_t sample, const FaceRange& faces,
               InNewDisk in_new_disk, InOldDisks in_old_disks)
   {
+    update(chains, sample, faces, in_new_disk, in_old_disks, [](const Arc&, bool) { return false; });
+  }
+
+  /// The same, where the chains leave out faces inside the earlier disks (the oracle's
+  /// iso_curve_outside): `ends_in_covered_face(arc, at_end)` tells whether the chain that begins
+  /// (`at_end` false) or ends (true) with `arc` breaks there because it enters such a face. A run
+  /// that reaches such a break without crossing the stored boundary is inside the earlier disks
+  /// (it goes on inside that face), and is left out without a distance query; where its crossings
+  /// say otherwise (rounding), in_old_disks decides as above.
+  template <class Chains, class FaceRange, class InNewDisk, class InOldDisks, class EndsInCoveredFace>
+  void update(const Chains& chains, std::size_t sample, const FaceRange& faces,
+              InNewDisk in_new_disk, InOldDisks in_old_disks, EndsInCoveredFace ends_in_covered_face)
+  {
     // crossings of the new arcs with the stored arcs, face by face (§4.2.3: arcs only meet inside
     // a common triangle); (stored arc, parameter) pairs, and per new arc its crossings
     // (the buffers are members, kept to reuse their storage)
@@ -401,7 +414,9 @@ public:
     // 2. new chains: keep what no earlier disk covers, run by run
     slot = 0;
     for(const auto& chain : chains) {
-      add_uncovered_runs(chain, &new_cuts_[slot], sample, in_old_disks);
+      const bool open = !chain.closed && !chain.arcs.empty();
+      add_uncovered_runs(chain, &new_cuts_[slot], sample, in_old_disks, open && ends_in_covered_face(chain.arcs.front(), false),
+                         open && ends_in_covered_face(chain.arcs.back(), true));
       slot += chain.arcs.size();
     }
   }
@@ -425,7 +440,12 @@ public:
   /// @{
   std::size_t runs_decided_by_crossings() const { return by_crossings_; }
   std::size_t runs_decided_by_distance() const { return by_distance_; }
+  /// runs left out because they enter a face inside the earlier disks (see update())
+  std::size_t runs_decided_by_covered_faces() const { return by_covered_faces_; }
   /// @}
+
+  /// true when a live arc lies in face f
+  bool has_arcs_in(face_descriptor f) const { return !arcs_in_face_[get(fim_, f)].empty(); }
 
 private:
   struct Piece
@@ -434,9 +454,10 @@ private:
     int start = -1, end = -1;   // index of the crossing at its start / end, -1: none (arc junction)
   };
 
+  // (`start_covered`, `end_covered`: the open chain breaks at a face inside the earlier disks)
   template <class Chain, class InOldDisks>
   void add_uncovered_runs(const Chain& chain, std::vector<internal::Arc_crossing>* cuts,
-                          std::size_t sample, InOldDisks in_old_disks)
+                          std::size_t sample, InOldDisks in_old_disks, bool start_covered, bool end_covered)
   {
     // pieces in chain order, with the crossings that bound them
     std::vector<Piece>& pieces = run_pieces_;
@@ -491,6 +512,11 @@ private:
         int inside = -1;   // -1: undecided
         const bool s_ok = sc >= 0 && crossings[sc].reliable, e_ok = ec >= 0 && crossings[ec].reliable;
         if(s_ok && e_ok && crossings[sc].entering != crossings[ec].entering) inside = crossings[sc].entering;
+        const bool covered_end = (run.front() == 0 && start_covered) || (run.back() + 1 == n && end_covered);
+        if(covered_end) {
+          if(inside < 0) { inside = 1; ++by_covered_faces_; }
+          else if(inside == 0) inside = -1;   // (the crossings disagree: the distance decides)
+        }
         if(inside < 0) {
           ++by_distance_;
           // the midpoint of the run, by length
@@ -612,7 +638,7 @@ private:
   std::vector<Piece> run_pieces_;
   std::vector<Arc> split_pieces_;
   std::vector<char> kept_;
-  std::size_t by_crossings_ = 0, by_distance_ = 0;
+  std::size_t by_crossings_ = 0, by_distance_ = 0, by_covered_faces_ = 0;
 };
 
 } // namespace Poisson_remesh

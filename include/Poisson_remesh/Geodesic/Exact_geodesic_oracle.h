@@ -76,6 +76,7 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -247,11 +248,17 @@ public:
   /// The iso-distance curve at distance `R` (`R` <= the propagation radius),
   /// as ordered chains of trimmed circular arcs (Section 4.2.2, Fig. 3a).
   /// O(A log A) where A is the number of arcs.
-  std::vector<Iso_curve> iso_curve(double R) const
+  std::vector<Iso_curve> iso_curve(double R) const { return iso_curve_outside(R, No_skip()); }
+
+  /// iso_curve(R) without the arcs in the faces f for which `skip(f)` holds (the sampler passes
+  /// the faces that lie inside earlier samples' disks, whose arcs it would drop): the chains
+  /// break where they enter such a face.
+  template <class SkipFace>
+  std::vector<Iso_curve> iso_curve_outside(double R, SkipFace skip) const
   {
     thread_local std::vector<Iso_arc> arcs;   // (per thread, its storage reused from one call to the next)
     arcs.clear();
-    extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs, R);
+    extract_iso_arcs([R](int) { return Face_level{Vec2{0., 0.}, R}; }, arcs, R, skip);
     return chain_iso_arcs(arcs);
   }
 
@@ -262,7 +269,12 @@ public:
   /// the region where d(x) <= r0 + r(x).  Faces where |grad r| >= 0.95 (a radius changing almost
   /// as fast as the distance, possible only on needle faces) use a gradient shortened to 0.95.
   template <class VertexRadius>
-  std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const
+  std::vector<Iso_curve> iso_curve(double r0, VertexRadius vertex_radius) const { return iso_curve_outside(r0, vertex_radius, No_skip()); }
+
+  /// iso_curve(r0, vertex_radius) without the arcs in the faces f for which `skip(f)` holds (as
+  /// iso_curve_outside(R, skip)).
+  template <class VertexRadius, class SkipFace>
+  std::vector<Iso_curve> iso_curve_outside(double r0, VertexRadius vertex_radius, SkipFace skip) const
   {
     thread_local std::vector<Iso_arc> arcs;   // (as in iso_curve(R))
     arcs.clear();
@@ -278,7 +290,7 @@ public:
       const double na = internal::norm(a);
       if(na > 0.95) a = (0.95 / na) * a;
       return Face_level{a, r0 + (l0 > 0. && y2 > 0. ? rv[0] : (rv[0] + rv[1] + rv[2]) / 3.)};
-    }, arcs);
+    }, arcs, internal::kInf, skip);
     return chain_iso_arcs(arcs);
   }
 
@@ -923,6 +935,12 @@ private:
     }
   }
 
+  /// (no face skipped)
+  struct No_skip
+  {
+    bool operator()(face_descriptor) const { return false; }
+  };
+
   /// For every face near the propagated region, the curve of every generator
   /// at the face's level (the circle of radius R - sigma for a constant level
   /// R, a conic for a level linear in the face) is cut at its intersections
@@ -935,8 +953,11 @@ private:
   /// at that distance or farther is no generator of its faces (collect_generators() takes those
   /// closer than the face's level), whose other generators bring them in: its faces are not
   /// visited for it.
-  template <class LevelOfFace>
-  void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs, double level_bound = internal::kInf) const
+  ///
+  /// `skip(f)`: the faces left out (their arcs are not made).
+  template <class LevelOfFace, class SkipFace = No_skip>
+  void extract_iso_arcs(LevelOfFace level_of_face, std::vector<Iso_arc>& arcs, double level_bound = internal::kInf,
+                        SkipFace skip = SkipFace()) const
   {
     // faces to examine: those with a distance generator (collect_generators): the faces that
     // windows enter, the faces around reached pseudo-sources closer than the level and a source
@@ -959,6 +980,8 @@ private:
     thread_local std::vector<std::pair<double, double> > kept;
     for(int f : faces_to_visit)
     {
+      if constexpr(!std::is_same<SkipFace, No_skip>::value)
+        if(skip(m->face_of[f])) continue;
       const Vec2 P[3] = {m->corner_2(f, 0), m->corner_2(f, 1), m->corner_2(f, 2)};
       const Face_level level = level_of_face(f);
       const bool conic = level.a.x != 0. || level.a.y != 0.;

@@ -16,6 +16,10 @@
 // (linear inside faces, Eq. 3); the available boundary of a sample p is where d(p, x) = r(p) + r(x),
 // made of conic arcs (Eq. 4-5), and the set is maximal for the rule d(p, q) >= r(p) + r(q).
 //
+// Beyond the paper, for speed: the faces found to lie inside the union of the disks so far are
+// left out of each new iso-curve (about half of a new curve lies in them, and its arcs there would
+// be dropped); the available boundary is the same (see add_sample() and mark_covered_faces()).
+//
 // Determinism: all randomness comes from one std::mt19937_64 seeded by the caller.
 
 #ifndef POISSON_REMESH_SAMPLING_BOUNDARY_SAMPLER_H
@@ -32,12 +36,15 @@
 
 #include <boost/iterator/function_output_iterator.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace Poisson_remesh {
@@ -62,12 +69,33 @@ struct Sampling_statistics
   std::size_t propagations = 0;            ///< forward propagations (one per sample)
   std::size_t classification_propagations = 0; ///< propagations from boundary midpoints (§4.2.3 decisions)
   std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
-  std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border
+  std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border (or from faces inside earlier disks, left out)
   std::size_t dropped_arcs = 0;            ///< boundary arcs found inside an earlier sample's region (adaptive density) or with no finite point (zero-area faces)
   std::size_t slabs = 0;                   ///< the slabs of the parallel mode (0: the sequential sampler ran)
+  std::size_t covered_faces = 0;           ///< faces found inside the union of the disks, whose new arcs are not made
 };
 
 namespace internal {
+
+// whether the oracle makes iso-curves without given faces and the boundary tells the faces that
+// hold arcs (Exact_geodesic_oracle, Circular_available_boundary): what the sampler's skipping
+// of covered faces needs
+template <class Oracle, class Boundary, class Face, class = void>
+struct Skips_covered_faces : std::false_type {};
+template <class Oracle, class Boundary, class Face>
+struct Skips_covered_faces<Oracle, Boundary, Face,
+                           std::void_t<decltype(std::declval<const Oracle&>().iso_curve_outside(1.0, std::declval<bool (*)(Face)>())),
+                                       decltype(std::declval<const Boundary&>().has_arcs_in(std::declval<Face>()))>> : std::true_type {};
+
+// one past the largest face index (as vertex_index_bound, density_fields.h)
+template <class TriangleMesh>
+std::size_t face_index_bound(const TriangleMesh& tm)
+{
+  auto fim = CGAL::get_initialized_face_index_map(tm);
+  std::size_t n = 0;
+  for(auto f : faces(tm)) n = (std::max)(n, std::size_t(get(fim, f)) + 1);
+  return n;
+}
 
 /// Uniform hash grid of sample points for "which samples are within Euclidean distance d".
 class Point_grid
@@ -141,7 +169,7 @@ public:
   /// through `vpm`; the sampler keeps a copy and propagates with it).
   Boundary_sampler(const TriangleMesh& tm, VertexPointMap vpm, std::uint64_t seed, GeodesicOracle oracle)
     : tm_(tm), vpm_(vpm), vim_(CGAL::get_initialized_vertex_index_map(tm)), oracle_(std::move(oracle)), classifier_(oracle_),
-      boundary_(tm), rng_(seed)
+      boundary_(tm), rng_(seed), fim_(CGAL::get_initialized_face_index_map(tm))
   {}
 
   /// The expellant-disk radius r (samples are at least 2r apart). A smaller radius than the
@@ -155,6 +183,7 @@ public:
     const bool rebuild = r_ > 0;
     r_ = r;
     boundary_.clear();
+    covered_.clear();
     boundary_.set_minimum_length(1e-9 * r);
     grid_.reset(2 * r);
     if(rebuild) ++level_;
@@ -185,6 +214,7 @@ public:
     }
     r_ = rmax;
     boundary_.clear();
+    covered_.clear();
     boundary_.set_minimum_length(1e-9 * rmin);
     grid_.reset(2 * rmax);
   }
@@ -282,6 +312,11 @@ public:
     }
   }
 
+  /// Whether the faces found inside the union of the disks are left out of the new iso-curves
+  /// (default true; with an oracle and a boundary that support it, as the defaults do): the same
+  /// available boundary, for less work (see add_sample()).
+  void set_skip_covered_faces(bool skip) { skip_covered_ = skip; covered_.clear(); }
+
   /// fill() draws only in the faces f with `pickable[fim(f)]` (fim: the mesh's initialized face
   /// index map; an empty vector: everywhere), the rest of the boundary still kept and updated;
   /// fill() then stops when no arc is left in those faces. (The parallel sampler gives each slab
@@ -337,17 +372,20 @@ private:
       if(too_close) { ++stats_.rejected_feature_samples; return false; }
     }
 
-    // the new iso-curve at 2r, and the faces the new disk meets
-    const auto chains = oracle_.iso_curve(two_r);
+    // the new iso-curve at 2r (without the faces inside the earlier disks), and the faces the new
+    // disk meets
+    const auto chains = iso_curve_outside_covered_faces([&](auto skip) { return oracle_.iso_curve_outside(two_r, skip); },
+                                                        [&] { return oracle_.iso_curve(two_r); });
     const std::vector<face_descriptor>& disk_faces = faces_of_new_disk(loc, chains, [](vertex_descriptor, double) { return true; });
 
     const std::size_t id = samples_.size();
-    boundary_.update(chains, id, disk_faces,
+    update_boundary(chains, id, disk_faces,
       [&](const Face_location& x) {
         const auto d = oracle_.distance(x);
         return d && *d < inside;
       },
       [&](const Face_location& x) { return covered_by_earlier_samples(x, inside); });
+    mark_covered_faces([&](vertex_descriptor, double d) { return d < inside; });
 
     samples_.push_back({loc, p, kind, level, r_});
     grid_.insert(id, pc);
@@ -387,21 +425,109 @@ private:
     }
 
     auto vertex_radius = [&](vertex_descriptor v) { return radius_at(v); };
-    const auto chains = oracle_.iso_curve(rp, vertex_radius);
+    const auto chains = iso_curve_outside_covered_faces([&](auto skip) { return oracle_.iso_curve_outside(rp, vertex_radius, skip); },
+                                                        [&] { return oracle_.iso_curve(rp, vertex_radius); });
     const std::vector<face_descriptor>& disk_faces =
       faces_of_new_disk(loc, chains, [&](vertex_descriptor v, double d) { return d <= rp + radius_at(v); });
 
     const std::size_t id = samples_.size();
-    boundary_.update(chains, id, disk_faces,
+    update_boundary(chains, id, disk_faces,
       [&](const Face_location& x) {
         const auto d = oracle_.distance(x);
         return d && *d < (rp + radius_at(x)) * keep;
       },
       [&](const Face_location& x) { return covered_by_earlier_adaptive_samples(x); });
+    mark_covered_faces([&](vertex_descriptor v, double d) { return d < (rp + radius_at(v)) * keep; });
 
     samples_.push_back({loc, p, kind, level, rp});
     grid_.insert(id, pc);
     return true;
+  }
+
+  // Faces inside the union of the disks. A face that holds no arc of the available boundary -- the
+  // boundary of that union -- lies either wholly inside the union or wholly outside it (its points
+  // are joined within it without crossing the boundary); with a point inside a disk, it is inside,
+  // and stays so as disks are added. A new iso-curve's arcs in such a face all lie in earlier
+  // disks and would be dropped: the oracle does not make them (extracting the arcs is the largest
+  // share of a sample's work, and about half of a new curve lies in such faces), and the boundary
+  // is told where a chain breaks at one, so that the run it ends is known to be inside. Arcs
+  // shorter than the boundary's minimum length are not stored, so a face is counted inside within
+  // that length, as the boundary already counts it.
+  static constexpr bool skips_covered_faces = internal::Skips_covered_faces<GeodesicOracle, Boundary, face_descriptor>::value;
+
+  bool is_covered(face_descriptor f) const { return !covered_.empty() && covered_[get(fim_, f)] != 0; }
+
+  // the new iso-curve: `outside(skip)` without the covered faces, or `whole()` when they are not
+  // skipped
+  template <class Outside, class Whole>
+  auto iso_curve_outside_covered_faces(Outside outside, Whole whole)
+  {
+    if constexpr(skips_covered_faces) {
+      if(skip_covered_) {
+        if(covered_.empty()) covered_.assign(internal::face_index_bound(tm_), 0);
+        return outside([this](face_descriptor f) { return is_covered(f); });
+      }
+    }
+    return whole();
+  }
+
+  // the boundary's update, told where the chains break at covered faces
+  template <class Chains, class FaceRange, class InNewDisk, class InOldDisks>
+  void update_boundary(const Chains& chains, std::size_t id, const FaceRange& faces, InNewDisk in_new_disk, InOldDisks in_old_disks)
+  {
+    if constexpr(skips_covered_faces) {
+      if(skip_covered_) {
+        boundary_.update(chains, id, faces, in_new_disk, in_old_disks,
+                         [&](const Arc& a, bool at_end) { return breaks_at_covered_face(a, at_end); });
+        return;
+      }
+    }
+    boundary_.update(chains, id, faces, in_new_disk, in_old_disks);
+  }
+
+  // whether the start (`at_end` false) or end of arc `a` lies on an edge whose other face is covered
+  // (a barycentric coordinate within 1e-9 of 0: on the edge opposite that corner)
+  bool breaks_at_covered_face(const Arc& a, bool at_end) const
+  {
+    const std::array<double, 3> b = a.barycentric(at_end ? 1.0 : 0.0);
+    const auto h0 = halfedge(a.face, tm_);
+    // (the corners are source(h0), target(h0), target(next(h0)); the edge opposite corner i is
+    // the halfedge after the one that ends at it)
+    const typename GT::halfedge_descriptor opposite_edge[3] = {next(h0, tm_), prev(h0, tm_), h0};
+    for(int i = 0; i < 3; ++i) {
+      if(b[i] > 1e-9) continue;
+      const auto o = opposite(opposite_edge[i], tm_);
+      if(!is_border(o, tm_) && is_covered(face(o, tm_))) return true;
+    }
+    return false;
+  }
+
+  // whether an open curve begins and ends at covered faces (it was cut there, not left open)
+  template <class Curve>
+  bool breaks_at_covered_faces(const Curve& c) const
+  {
+    if constexpr(skips_covered_faces) return skip_covered_ && breaks_at_covered_face(c.arcs.front(), false) && breaks_at_covered_face(c.arcs.back(), true);
+    else return false;
+  }
+
+  // after the update: the faces without arcs around the vertices the propagation reached inside
+  // the new disk (`inside(v, d)`) are covered
+  template <class Inside>
+  void mark_covered_faces(Inside inside)
+  {
+    if constexpr(skips_covered_faces) {
+      if(!skip_covered_ || covered_.empty()) return;
+      oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
+        if(!inside(vd.first, vd.second)) return;
+        for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_)) {
+          if(f == GT::null_face() || covered_[get(fim_, f)] || boundary_.has_arcs_in(f)) continue;
+          covered_[get(fim_, f)] = 1;
+          ++stats_.covered_faces;
+        }
+      }));
+    } else {
+      (void)inside;
+    }
   }
 
   // The faces the new disk meets, sorted: a face meeting it holds the sample, is crossed by its
@@ -413,7 +539,7 @@ private:
     std::vector<face_descriptor>& faces = disk_faces_;
     faces.assign(1, loc.first);
     for(const auto& curve : chains) {
-      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve)) ++stats_.open_iso_curves;
+      if(!curve.closed && !curve.arcs.empty() && !touches_border(curve) && !breaks_at_covered_faces(curve)) ++stats_.open_iso_curves;
       for(const Arc& a : curve.arcs) faces.push_back(a.face);
     }
     oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
@@ -494,6 +620,9 @@ private:
   std::vector<face_descriptor> disk_faces_;   // (the faces a new disk meets; kept to reuse its storage)
   std::vector<std::size_t> near_;   // (the samples near a point of a new curve; kept likewise)
   std::vector<double> vertex_radius_;   // adaptive density: radius per vertex (by vertex index)
+  typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type fim_;
+  std::vector<char> covered_;   // by face index: inside the union of the disks (is_covered()); empty until the first sample
+  bool skip_covered_ = true;
   Sampling_statistics stats_;
   double r_ = 0;
   unsigned int level_ = 0;
