@@ -98,13 +98,18 @@ namespace internal {
 // One past the largest vertex index: per-vertex vectors are indexed by the vertex index map,
 // whose values are not contiguous when the mesh holds removed elements (a Surface_mesh after
 // remove_degenerate_faces(), before collect_garbage()).
+// (of the elements of `range` under the index map `index`)
+template <class Range, class IndexMap>
+std::size_t index_bound(const Range& range, const IndexMap& index)
+{
+  std::size_t n = 0;
+  for(auto x : range) n = (std::max)(n, std::size_t(get(index, x)) + 1);
+  return n;
+}
 template <class TriangleMesh>
 std::size_t vertex_index_bound(const TriangleMesh& tm)
 {
-  auto vim = CGAL::get_initialized_vertex_index_map(tm);
-  std::size_t n = 0;
-  for(auto v : vertices(tm)) n = (std::max)(n, std::size_t(get(vim, v)) + 1);
-  return n;
+  return index_bound(vertices(tm), CGAL::get_initialized_vertex_index_map(tm));
 }
 
 // per vertex index: its neighbours' indices and the lengths of the edges to them

@@ -9,6 +9,7 @@
 #include <Poisson_remesh/read_surface_mesh.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -828,6 +829,41 @@ TEST_CASE("the faces inside earlier disks are left out of new iso-curves: the sa
     CHECK(skipping.available_boundary().runs_decided_by_covered_faces() > drawn.samples().size());
     CHECK(skipping.statistics().classification_propagations < whole.statistics().classification_propagations);
   }
+  // With zero-area faces (interior edges split at their midpoints, each side cut so that one
+  // triangle is the edge and its midpoint), whose lack of arcs tells nothing and whose neighbours'
+  // curves may give arcs with no usable point there, no face is skipped: the same draws as
+  // without skipping.
+  Mesh flat = m;
+  std::size_t made = 0;
+  std::vector<char> touched(num_faces(flat), 0);
+  std::vector<Mesh::Edge_index> split(edges(flat).begin(), edges(flat).end());
+  for(std::size_t k = 0; k < split.size() && made < 100; k += 7) {
+    const auto h = halfedge(split[k], flat);
+    const auto f1 = face(h, flat), f2 = face(opposite(h, flat), flat);
+    // (an edge whose faces an earlier split cut is passed over: its faces may be new ones)
+    if(CGAL::is_border_edge(h, flat) || std::size_t(f1) >= touched.size() || std::size_t(f2) >= touched.size() || touched[std::size_t(f1)] ||
+       touched[std::size_t(f2)])
+      continue;
+    const Point a = flat.point(source(h, flat)), b = flat.point(target(h, flat));
+    const auto hm = CGAL::Euler::split_edge(h, flat);
+    flat.point(target(hm, flat)) = CGAL::midpoint(a, b);
+    CGAL::Euler::split_face(prev(hm, flat), next(hm, flat), flat);
+    const auto ho = opposite(hm, flat);
+    CGAL::Euler::split_face(prev(ho, flat), next(ho, flat), flat);
+    touched[std::size_t(f1)] = touched[std::size_t(f2)] = 1;
+    ++made;
+  }
+  REQUIRE(made == 100);
+  REQUIRE(CGAL::is_valid_polygon_mesh(flat));
+  const VPM flat_vpm = get(CGAL::vertex_point, flat);
+  Sampler skipping(flat, flat_vpm, 5), whole(flat, flat_vpm, 5);
+  whole.set_skip_covered_faces(false);
+  for(Sampler* s : {&skipping, &whole}) { s->set_radius(r); s->seed_components(); s->fill(); }
+  CHECK(skipping.statistics().covered_faces == 0);
+  REQUIRE(skipping.samples().size() == whole.samples().size());
+  bool same = true;
+  for(std::size_t i = 0; i < whole.samples().size(); ++i) same = same && skipping.samples()[i].point == whole.samples()[i].point;
+  CHECK(same);
 }
 
 TEST_CASE("levels of detail are nested and each level is a maximal set", "[sampling][levels]")

@@ -64,7 +64,7 @@ public:
   /// optional: update() with chains that leave out faces inside the earlier disks;
   /// `ends_in_covered_face(arc, at_end)` tells whether the open chain that begins (`at_end`
   /// false) or ends (true) with `arc` breaks there at such a face: the run of the new curve that
-  /// reaches the break without crossing the stored boundary is inside the earlier disks
+  /// reaches the break without meeting the stored boundary is inside the earlier disks
   template <class Chains, class FaceRange, class InNewDisk, class InOldDisks, class EndsInCoveredFace>
   void update(const Chains& chains, std::size_t sample, const FaceRange& faces,
               InNewDisk in_new_disk, InOldDisks in_old_disks, EndsInCoveredFace ends_in_covered_face);

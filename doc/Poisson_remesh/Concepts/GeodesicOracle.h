@@ -36,7 +36,8 @@ the oracle it is given (a model is `CopyConstructible`; the copies propagate ind
 `iso_curve(r0, vertex_radius)` is needed for adaptive density only. The two `iso_curve_outside()`
 members are optional: when a model has them (and the `BoundaryCurve` has `has_arcs_in()`), the
 sampler leaves out of each new curve the faces it knows to lie inside earlier samples' disks,
-whose arcs it would drop; without them it asks for the whole curve, with the same samples.
+whose arcs it would drop; without them it asks for the whole curve (the same available boundary
+after each sample, but its arcs found in another order: other sample sets for a seed).
 
 `Poisson_remesh::Approximate_geodesic_oracle` answers the same distance queries cheaply, but its
 iso-curves are straight segments, which the circular available boundary does not take: it is not

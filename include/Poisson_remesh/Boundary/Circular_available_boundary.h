@@ -366,7 +366,7 @@ public:
   /// The same, where the chains leave out faces inside the earlier disks (the oracle's
   /// iso_curve_outside): `ends_in_covered_face(arc, at_end)` tells whether the chain that begins
   /// (`at_end` false) or ends (true) with `arc` breaks there because it enters such a face. A run
-  /// that reaches such a break without crossing the stored boundary is inside the earlier disks
+  /// that reaches such a break without meeting the stored boundary is inside the earlier disks
   /// (it goes on inside that face), and is left out without a distance query; where its crossings
   /// say otherwise (rounding), in_old_disks decides as above.
   template <class Chains, class FaceRange, class InNewDisk, class InOldDisks, class EndsInCoveredFace>
@@ -512,10 +512,13 @@ private:
         int inside = -1;   // -1: undecided
         const bool s_ok = sc >= 0 && crossings[sc].reliable, e_ok = ec >= 0 && crossings[ec].reliable;
         if(s_ok && e_ok && crossings[sc].entering != crossings[ec].entering) inside = crossings[sc].entering;
-        const bool covered_end = (run.front() == 0 && start_covered) || (run.back() + 1 == n && end_covered);
-        if(covered_end) {
-          if(inside < 0) { inside = 1; ++by_covered_faces_; }
-          else if(inside == 0) inside = -1;   // (the crossings disagree: the distance decides)
+        const bool from_covered = run.front() == 0 && start_covered, to_covered = run.back() + 1 == n && end_covered;
+        if(from_covered || to_covered) {
+          // (a reliable cut at the run's other end that says it lies outside -- entering the
+          // earlier disks at its end, or leaving them at its start -- disagrees: the distance decides)
+          const bool disagree = inside == 0 || (from_covered && e_ok && crossings[ec].entering) || (to_covered && s_ok && !crossings[sc].entering);
+          if(disagree) inside = -1;
+          else if(inside < 0) { inside = 1; ++by_covered_faces_; }
         }
         if(inside < 0) {
           ++by_distance_;

@@ -17,7 +17,7 @@
 // made of conic arcs (Eq. 4-5), and the set is maximal for the rule d(p, q) >= r(p) + r(q).
 //
 // Beyond the paper, for speed: the faces found to lie inside the union of the disks so far are
-// left out of each new iso-curve (about half of a new curve lies in them, and its arcs there would
+// left out of each new iso-curve (nearly 50% of a new curve lies in them, and its arcs there would
 // be dropped); the available boundary is the same (see add_sample() and mark_covered_faces()).
 //
 // Determinism: all randomness comes from one std::mt19937_64 seeded by the caller.
@@ -69,7 +69,7 @@ struct Sampling_statistics
   std::size_t propagations = 0;            ///< forward propagations (one per sample)
   std::size_t classification_propagations = 0; ///< propagations from boundary midpoints (§4.2.3 decisions)
   std::size_t rejected_feature_samples = 0; ///< feature-curve points closer than 2r to an earlier sample
-  std::size_t open_iso_curves = 0;         ///< iso-curves that did not close away from a border (or from faces inside earlier disks, left out)
+  std::size_t open_iso_curves = 0;         ///< iso-curves left open away from a border and from the edges of faces left out (inside earlier disks)
   std::size_t dropped_arcs = 0;            ///< boundary arcs found inside an earlier sample's region (adaptive density) or with no finite point (zero-area faces)
   std::size_t slabs = 0;                   ///< the slabs of the parallel mode (0: the sequential sampler ran)
   std::size_t covered_faces = 0;           ///< faces found inside the union of the disks, whose new arcs are not made
@@ -77,25 +77,21 @@ struct Sampling_statistics
 
 namespace internal {
 
-// whether the oracle makes iso-curves without given faces and the boundary tells the faces that
-// hold arcs (Exact_geodesic_oracle, Circular_available_boundary): what the sampler's skipping
-// of covered faces needs
-template <class Oracle, class Boundary, class Face, class = void>
+// whether the oracle makes iso-curves without given faces (both levels) and the boundary tells the
+// faces that hold arcs and takes the chains' breaks (Exact_geodesic_oracle,
+// Circular_available_boundary): what the sampler's skipping of covered faces needs
+template <class Oracle, class Boundary, class Face, class Vertex, class Location, class = void>
 struct Skips_covered_faces : std::false_type {};
-template <class Oracle, class Boundary, class Face>
-struct Skips_covered_faces<Oracle, Boundary, Face,
-                           std::void_t<decltype(std::declval<const Oracle&>().iso_curve_outside(1.0, std::declval<bool (*)(Face)>())),
-                                       decltype(std::declval<const Boundary&>().has_arcs_in(std::declval<Face>()))>> : std::true_type {};
-
-// one past the largest face index (as vertex_index_bound, density_fields.h)
-template <class TriangleMesh>
-std::size_t face_index_bound(const TriangleMesh& tm)
-{
-  auto fim = CGAL::get_initialized_face_index_map(tm);
-  std::size_t n = 0;
-  for(auto f : faces(tm)) n = (std::max)(n, std::size_t(get(fim, f)) + 1);
-  return n;
-}
+template <class Oracle, class Boundary, class Face, class Vertex, class Location>
+struct Skips_covered_faces<
+  Oracle, Boundary, Face, Vertex, Location,
+  std::void_t<decltype(std::declval<const Oracle&>().iso_curve_outside(1.0, std::declval<bool (*)(Face)>())),
+              decltype(std::declval<const Oracle&>().iso_curve_outside(1.0, std::declval<double (*)(Vertex)>(), std::declval<bool (*)(Face)>())),
+              decltype(std::declval<const Boundary&>().has_arcs_in(std::declval<Face>())),
+              decltype(std::declval<Boundary&>().update(std::declval<const std::vector<typename Oracle::Iso_curve>&>(), std::size_t(0),
+                                                        std::declval<const std::vector<Face>&>(), std::declval<bool (*)(const Location&)>(),
+                                                        std::declval<bool (*)(const Location&)>(),
+                                                        std::declval<bool (*)(const typename Oracle::Iso_arc&, bool)>()))>> : std::true_type {};
 
 /// Uniform hash grid of sample points for "which samples are within Euclidean distance d".
 class Point_grid
@@ -296,6 +292,7 @@ public:
       const Face_location s = snapped(loc);
       if(!(std::isfinite(s.second[0]) && std::isfinite(s.second[1]) && std::isfinite(s.second[2]))) {
         boundary_.remove_arc(arc);
+        never_cover(loc.first);
         ++stats_.dropped_arcs;
         continue;
       }
@@ -304,6 +301,7 @@ public:
       // than the distance on a needle face): the arc is dropped, and counted
       if(!vertex_radius_.empty() && covered_by_earlier_adaptive_samples(s)) {
         boundary_.remove_arc(arc);
+        never_cover(loc.first);
         ++stats_.dropped_arcs;
         continue;
       }
@@ -313,8 +311,9 @@ public:
   }
 
   /// Whether the faces found inside the union of the disks are left out of the new iso-curves
-  /// (default true; with an oracle and a boundary that support it, as the defaults do): the same
-  /// available boundary, for less work (see add_sample()).
+  /// (default true; with an oracle and a boundary that support it, as the defaults do, and on a
+  /// mesh without nearly zero-area faces): the same available boundary, for less work, but other
+  /// draws (see add_sample()).
   void set_skip_covered_faces(bool skip) { skip_covered_ = skip; covered_.clear(); }
 
   /// fill() draws only in the faces f with `pickable[fim(f)]` (fim: the mesh's initialized face
@@ -446,16 +445,46 @@ private:
 
   // Faces inside the union of the disks. A face that holds no arc of the available boundary -- the
   // boundary of that union -- lies either wholly inside the union or wholly outside it (its points
-  // are joined within it without crossing the boundary); with a point inside a disk, it is inside,
+  // are joined within it without meeting the boundary); with a point inside a disk, it is inside,
   // and stays so as disks are added. A new iso-curve's arcs in such a face all lie in earlier
   // disks and would be dropped: the oracle does not make them (extracting the arcs is the largest
-  // share of a sample's work, and about half of a new curve lies in such faces), and the boundary
+  // share of a sample's work, and nearly 50% of a new curve lies in such faces), and the boundary
   // is told where a chain breaks at one, so that the run it ends is known to be inside. Arcs
   // shorter than the boundary's minimum length are not stored, so a face is counted inside within
   // that length, as the boundary already counts it.
-  static constexpr bool skips_covered_faces = internal::Skips_covered_faces<GeodesicOracle, Boundary, face_descriptor>::value;
+  static constexpr bool skips_covered_faces =
+    internal::Skips_covered_faces<GeodesicOracle, Boundary, face_descriptor, vertex_descriptor, Face_location>::value;
 
-  bool is_covered(face_descriptor f) const { return !covered_.empty() && covered_[get(fim_, f)] != 0; }
+  // covered_'s values: not known to be covered, covered, never to be taken as covered (a face one
+  // of whose arcs gave no usable point, fill())
+  enum : char { not_covered = 0, covered = 1, never_covered = 2 };
+
+  bool is_covered(face_descriptor f) const { return !covered_.empty() && covered_[get(fim_, f)] == covered; }
+
+  // an arc of face f was dropped (fill()): f is never taken as covered
+  void never_cover(face_descriptor f)
+  {
+    if(!covered_.empty()) covered_[get(fim_, f)] = never_covered;
+  }
+
+  // whether face f is too thin for its arcs to be stored surely (its height under 1e-9 of its
+  // longest edge): its lack of arcs would tell nothing, and the arcs of its neighbours' curves
+  // through it may give no usable point (they are dropped in fill()); on a mesh with such a face
+  // the covered faces are not skipped (poisson_remesh() removes zero-area faces first)
+  bool nearly_flat(face_descriptor f) const
+  {
+    const auto h = halfedge(f, tm_);
+    const std::array<double, 3> a = coords(get(vpm_, source(h, tm_))), b = coords(get(vpm_, target(h, tm_))),
+                                c = coords(get(vpm_, target(next(h, tm_), tm_)));
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]},
+                 x[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double area2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];   // (twice the area, squared)
+    const double longest = (std::max)({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], w[0] * w[0] + w[1] * w[1] + w[2] * w[2],
+                                       x[0] * x[0] + x[1] * x[1] + x[2] * x[2]});
+    // (the height is twice the area over the longest edge)
+    return !(area2 > 1e-18 * longest * longest);
+  }
 
   // the new iso-curve: `outside(skip)` without the covered faces, or `whole()` when they are not
   // skipped
@@ -463,10 +492,13 @@ private:
   auto iso_curve_outside_covered_faces(Outside outside, Whole whole)
   {
     if constexpr(skips_covered_faces) {
-      if(skip_covered_) {
-        if(covered_.empty()) covered_.assign(internal::face_index_bound(tm_), 0);
-        return outside([this](face_descriptor f) { return is_covered(f); });
+      if(skip_covered_ && covered_.empty()) {
+        // (a mesh with nearly zero-area faces: every arc is made, see nearly_flat())
+        for(face_descriptor f : faces(tm_))
+          if(nearly_flat(f)) { skip_covered_ = false; break; }
+        if(skip_covered_) covered_.assign(internal::index_bound(faces(tm_), fim_), not_covered);
       }
+      if(skip_covered_) return outside([this](face_descriptor f) { return is_covered(f); });
     }
     return whole();
   }
@@ -486,16 +518,16 @@ private:
   }
 
   // whether the start (`at_end` false) or end of arc `a` lies on an edge whose other face is covered
-  // (a barycentric coordinate within 1e-9 of 0: on the edge opposite that corner)
+  // (a barycentric coordinate within 1e-9 of 0: on the edge opposite that vertex)
   bool breaks_at_covered_face(const Arc& a, bool at_end) const
   {
     const std::array<double, 3> b = a.barycentric(at_end ? 1.0 : 0.0);
     const auto h0 = halfedge(a.face, tm_);
-    // (the corners are source(h0), target(h0), target(next(h0)); the edge opposite corner i is
-    // the halfedge after the one that ends at it)
+    // (the face's vertices are source(h0), target(h0), target(next(h0)); the edge opposite vertex i is
+    // the halfedge after the one that starts at it)
     const typename GT::halfedge_descriptor opposite_edge[3] = {next(h0, tm_), prev(h0, tm_), h0};
     for(int i = 0; i < 3; ++i) {
-      if(b[i] > 1e-9) continue;
+      if(!(b[i] <= 1e-9)) continue;   // (NaN: no end known)
       const auto o = opposite(opposite_edge[i], tm_);
       if(!is_border(o, tm_) && is_covered(face(o, tm_))) return true;
     }
@@ -520,8 +552,8 @@ private:
       oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
         if(!inside(vd.first, vd.second)) return;
         for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_)) {
-          if(f == GT::null_face() || covered_[get(fim_, f)] || boundary_.has_arcs_in(f)) continue;
-          covered_[get(fim_, f)] = 1;
+          if(f == GT::null_face() || covered_[get(fim_, f)] != not_covered || boundary_.has_arcs_in(f)) continue;
+          covered_[get(fim_, f)] = covered;
           ++stats_.covered_faces;
         }
       }));

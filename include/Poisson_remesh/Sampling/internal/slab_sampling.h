@@ -378,6 +378,7 @@ bool fill_by_slabs(const TriangleMesh& tm, VPM vpm, double radius, const std::ve
     stats.classification_propagations += t.classification_propagations;
     stats.open_iso_curves += t.open_iso_curves;
     stats.dropped_arcs += t.dropped_arcs;
+    stats.covered_faces += t.covered_faces;
   }
   stats.slabs = k;
   return true;
