@@ -214,11 +214,7 @@ std::vector<double> vertex_curvatures(const TriangleMesh& tm, VPM vpm, IsCrease 
     }
     // each side: the faces around v joined across edges that are no crease, and the faces reached
     // from them across such edges (two steps, up to four while there are fewer than ten points)
-    if(face_stamp.empty()) {   // (by face index: one past the largest)
-      std::size_t bound = 0;
-      for(face_descriptor f : faces(tm)) bound = (std::max)(bound, std::size_t(get(fim, f)) + 1);
-      face_stamp.assign(bound, -1);
-    }
+    if(face_stamp.empty()) face_stamp.assign(index_bound(faces(tm), fim), -1);   // (by face index)
     incident.clear();
     for(auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
       if(!is_border(h, tm)) incident.push_back(face(h, tm));

@@ -75,8 +75,8 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <utility>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Poisson_remesh {

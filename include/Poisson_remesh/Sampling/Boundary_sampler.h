@@ -17,8 +17,8 @@
 // made of conic arcs (Eq. 4-5), and the set is maximal for the rule d(p, q) >= r(p) + r(q).
 //
 // Beyond the paper, for speed: the faces found to lie inside the union of the disks so far are
-// left out of each new iso-curve (nearly 50% of a new curve lies in them, and its arcs there would
-// be dropped); the available boundary is the same (see add_sample() and mark_covered_faces()).
+// left out of each new iso-curve (its arcs there would all be dropped); the available boundary is
+// the same (see add_sample() and mark_covered_faces()).
 //
 // Determinism: all randomness comes from one std::mt19937_64 seeded by the caller.
 
@@ -312,8 +312,8 @@ public:
 
   /// Whether the faces found inside the union of the disks are left out of the new iso-curves
   /// (default true; with an oracle and a boundary that support it, as the defaults do, and on a
-  /// mesh without nearly zero-area faces): the same available boundary, for less work, but other
-  /// draws (see add_sample()).
+  /// mesh without nearly zero-area faces): the same available boundary, for less work, its arcs
+  /// added in another order, so that the points drawn on it differ (see add_sample()).
   void set_skip_covered_faces(bool skip) { skip_covered_ = skip; covered_.clear(); }
 
   /// fill() draws only in the faces f with `pickable[fim(f)]` (fim: the mesh's initialized face
@@ -375,7 +375,8 @@ private:
     // disk meets
     const auto chains = iso_curve_outside_covered_faces([&](auto skip) { return oracle_.iso_curve_outside(two_r, skip); },
                                                         [&] { return oracle_.iso_curve(two_r); });
-    const std::vector<face_descriptor>& disk_faces = faces_of_new_disk(loc, chains, [](vertex_descriptor, double) { return true; });
+    const std::vector<face_descriptor>& disk_faces =
+      faces_of_new_disk(loc, chains, [](vertex_descriptor, double) { return true; }, [&](vertex_descriptor, double d) { return d < inside; });
 
     const std::size_t id = samples_.size();
     update_boundary(chains, id, disk_faces,
@@ -384,7 +385,7 @@ private:
         return d && *d < inside;
       },
       [&](const Face_location& x) { return covered_by_earlier_samples(x, inside); });
-    mark_covered_faces([&](vertex_descriptor, double d) { return d < inside; });
+    mark_covered_faces();
 
     samples_.push_back({loc, p, kind, level, r_});
     grid_.insert(id, pc);
@@ -427,7 +428,8 @@ private:
     const auto chains = iso_curve_outside_covered_faces([&](auto skip) { return oracle_.iso_curve_outside(rp, vertex_radius, skip); },
                                                         [&] { return oracle_.iso_curve(rp, vertex_radius); });
     const std::vector<face_descriptor>& disk_faces =
-      faces_of_new_disk(loc, chains, [&](vertex_descriptor v, double d) { return d <= rp + radius_at(v); });
+      faces_of_new_disk(loc, chains, [&](vertex_descriptor v, double d) { return d <= rp + radius_at(v); },
+                        [&](vertex_descriptor v, double d) { return d < (rp + radius_at(v)) * keep; });
 
     const std::size_t id = samples_.size();
     update_boundary(chains, id, disk_faces,
@@ -436,7 +438,7 @@ private:
         return d && *d < (rp + radius_at(x)) * keep;
       },
       [&](const Face_location& x) { return covered_by_earlier_adaptive_samples(x); });
-    mark_covered_faces([&](vertex_descriptor v, double d) { return d < (rp + radius_at(v)) * keep; });
+    mark_covered_faces();
 
     samples_.push_back({loc, p, kind, level, rp});
     grid_.insert(id, pc);
@@ -448,7 +450,7 @@ private:
   // are joined within it without meeting the boundary); with a point inside a disk, it is inside,
   // and stays so as disks are added. A new iso-curve's arcs in such a face all lie in earlier
   // disks and would be dropped: the oracle does not make them (extracting the arcs is the largest
-  // share of a sample's work, and nearly 50% of a new curve lies in such faces), and the boundary
+  // share of a sample's work, and much of a new curve lies in such faces), and the boundary
   // is told where a chain breaks at one, so that the run it ends is known to be inside. Arcs
   // shorter than the boundary's minimum length are not stored, so a face is counted inside within
   // that length, as the boundary already counts it.
@@ -542,42 +544,43 @@ private:
     else return false;
   }
 
-  // after the update: the faces without arcs around the vertices the propagation reached inside
-  // the new disk (`inside(v, d)`) are covered
-  template <class Inside>
-  void mark_covered_faces(Inside inside)
+  // after the update: the faces without arcs around the vertices the propagation reached strictly
+  // inside the new disk (faces_of_new_disk() gathered them) are covered
+  void mark_covered_faces()
   {
-    if constexpr(skips_covered_faces) {
-      if(!skip_covered_ || covered_.empty()) return;
-      oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
-        if(!inside(vd.first, vd.second)) return;
-        for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_)) {
-          if(f == GT::null_face() || covered_[get(fim_, f)] != not_covered || boundary_.has_arcs_in(f)) continue;
-          covered_[get(fim_, f)] = covered;
-          ++stats_.covered_faces;
-        }
-      }));
-    } else {
-      (void)inside;
-    }
+    if constexpr(skips_covered_faces)
+      for(face_descriptor f : faces_to_mark_) {
+        if(covered_[get(fim_, f)] != not_covered || boundary_.has_arcs_in(f)) continue;
+        covered_[get(fim_, f)] = covered;
+        ++stats_.covered_faces;
+      }
   }
 
   // The faces the new disk meets, sorted: a face meeting it holds the sample, is crossed by its
   // iso-curve `chains`, or has a vertex inside it (a vertex v the propagation reached at distance
-  // d with inside(v, d)); counts the open iso-curves on the way.
-  template <class Chains, class Inside>
-  const std::vector<face_descriptor>& faces_of_new_disk(const Face_location& loc, const Chains& chains, Inside inside)
+  // d with inside(v, d)); counts the open iso-curves on the way. When covered faces are skipped,
+  // the faces around the vertices strictly inside (`strictly_inside(v, d)`) are kept for
+  // mark_covered_faces().
+  template <class Chains, class Inside, class StrictlyInside>
+  const std::vector<face_descriptor>& faces_of_new_disk(const Face_location& loc, const Chains& chains, Inside inside,
+                                                        StrictlyInside strictly_inside)
   {
     std::vector<face_descriptor>& faces = disk_faces_;
     faces.assign(1, loc.first);
+    faces_to_mark_.clear();
+    const bool marking = skips_covered_faces && skip_covered_ && !covered_.empty();
     for(const auto& curve : chains) {
       if(!curve.closed && !curve.arcs.empty() && !touches_border(curve) && !breaks_at_covered_faces(curve)) ++stats_.open_iso_curves;
       for(const Arc& a : curve.arcs) faces.push_back(a.face);
     }
     oracle_.reached_vertices(boost::make_function_output_iterator([&](const std::pair<vertex_descriptor, double>& vd) {
       if(!inside(vd.first, vd.second)) return;
+      const bool mark = marking && strictly_inside(vd.first, vd.second);
       for(face_descriptor f : CGAL::faces_around_target(halfedge(vd.first, tm_), tm_))
-        if(f != GT::null_face()) faces.push_back(f);
+        if(f != GT::null_face()) {
+          faces.push_back(f);
+          if(mark) faces_to_mark_.push_back(f);
+        }
     }));
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
@@ -654,6 +657,7 @@ private:
   std::vector<double> vertex_radius_;   // adaptive density: radius per vertex (by vertex index)
   typename CGAL::GetInitializedFaceIndexMap<TriangleMesh>::const_type fim_;
   std::vector<char> covered_;   // by face index: inside the union of the disks (is_covered()); empty until the first sample
+  std::vector<face_descriptor> faces_to_mark_;   // (faces_of_new_disk() for mark_covered_faces(); kept to reuse its storage)
   bool skip_covered_ = true;
   Sampling_statistics stats_;
   double r_ = 0;
